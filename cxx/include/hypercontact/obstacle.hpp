@@ -1,0 +1,44 @@
+// Rigid obstacles: analytic master surfaces, and the projection of a slave point onto them.
+#pragma once
+
+#include <Eigen/Core>
+#include <variant>
+
+namespace hypercontact {
+
+/// Which feature of the obstacle is closest to the slave point.
+enum class Feature { Face, Edge, Vertex };
+
+/// Closest-point projection of a slave point x onto an obstacle.
+struct ObstacleProjection {
+  /// Signed distance g(x): > 0 open, < 0 penetration.
+  double gap;
+  /// Unit outward normal n of the obstacle at the closest point (points from the obstacle
+  /// towards x when open); ∂g/∂x = n.
+  Eigen::Vector3d normal;
+  /// ∂n/∂x: zero on a flat face, (I − n nᵀ − t tᵀ)/g on an edge with unit tangent t,
+  /// (I − n nᵀ)/g at a vertex.
+  Eigen::Matrix3d dnormal_dx;
+  Feature feature;
+};
+
+/// Half-space bounded by the plane through `point`; `normal` is unit and points out of the
+/// obstacle into the admissible half-space.
+struct RigidPlane {
+  Eigen::Vector3d point;
+  Eigen::Vector3d normal;
+};
+
+/// Axis-aligned box occupying [lo, hi] (current position); requires lo < hi componentwise.
+struct RigidBox {
+  Eigen::Vector3d lo;
+  Eigen::Vector3d hi;
+};
+
+using Obstacle = std::variant<RigidPlane, RigidBox>;
+
+/// Projection of a finite point x onto any obstacle: dispatches to project_to_plane or
+/// project_to_box.
+ObstacleProjection project(const Obstacle& obstacle, const Eigen::Vector3d& x);
+
+}  // namespace hypercontact

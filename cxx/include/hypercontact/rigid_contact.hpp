@@ -1,0 +1,26 @@
+// Normal penalty contact of a set of slave nodes against one rigid obstacle (PETSc-free).
+#pragma once
+
+#include <hypercontact/normal_penalty.hpp>
+#include <hypercontact/obstacle.hpp>
+#include <span>
+#include <vector>
+
+namespace hypercontact {
+
+/// One slave node: its projection onto the obstacle and its penalty contribution.
+struct RigidContactNode {
+  ObstacleProjection projection;
+  NodalContact contact;
+};
+
+/// Evaluates, for every slave node i with current position x_i and nodal area A_i,
+///   projection_i = project(obstacle, x_i),   contact_i = normal_penalty(projection_i, A_i, ε_N).
+/// x: n × 3 row-major; area: n.
+/// Throws std::invalid_argument on inconsistent sizes or bad parameters, and
+/// std::runtime_error naming the node if a coordinate is not finite.
+std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
+                                                     std::span<const double> x,
+                                                     std::span<const double> area, double eps_n);
+
+}  // namespace hypercontact

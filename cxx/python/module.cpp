@@ -1,0 +1,16 @@
+#include <pybind11/pybind11.h>
+
+namespace hypercontact::python {
+void declare_obstacle(pybind11::module_& m);
+void declare_normal_penalty(pybind11::module_& m);
+void declare_nodal_area(pybind11::module_& m);
+void declare_assemble_rigid(pybind11::module_& m);
+}  // namespace hypercontact::python
+
+PYBIND11_MODULE(_cpp, m) {
+  m.doc() = "hypercontact C++ contact kernels (private; use the hypercontact package)";
+  hypercontact::python::declare_obstacle(m);
+  hypercontact::python::declare_normal_penalty(m);
+  hypercontact::python::declare_nodal_area(m);
+  hypercontact::python::declare_assemble_rigid(m);
+}

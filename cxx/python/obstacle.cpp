@@ -1,0 +1,74 @@
+// Bindings of obstacle.hpp (Feature, ObstacleProjection, RigidPlane, RigidBox, project).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <hypercontact/obstacle.hpp>
+
+#include "array.hpp"
+
+namespace hypercontact::python {
+
+void declare_obstacle(py::module_& m) {
+  py::enum_<Feature>(m, "Feature", "Closest feature of an obstacle")
+      .value("Face", Feature::Face)
+      .value("Edge", Feature::Edge)
+      .value("Vertex", Feature::Vertex);
+
+  py::class_<ObstacleProjection>(m, "ObstacleProjection",
+                                 "Closest-point projection of a slave point onto an obstacle")
+      .def(py::init([](double gap, const RealArray& normal, const RealArray& dnormal_dx,
+                       Feature feature) {
+             check_shape(dnormal_dx, "dnormal_dx", {3, 3});
+             return ObstacleProjection{
+                 gap, as_vector3(normal, "normal"),
+                 Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(dnormal_dx.data()),
+                 feature};
+           }),
+           py::arg("gap"), py::arg("normal"), py::arg("dnormal_dx"), py::arg("feature"))
+      .def_readonly("gap", &ObstacleProjection::gap, "signed distance: > 0 open, < 0 penetration")
+      .def_readonly("normal", &ObstacleProjection::normal, "unit outward normal, = d gap / d x")
+      .def_readonly("dnormal_dx", &ObstacleProjection::dnormal_dx, "d normal / d x (3, 3)")
+      .def_readonly("feature", &ObstacleProjection::feature);
+
+  py::class_<RigidPlane>(m, "RigidPlane", "Rigid half-space; normal points out of the obstacle")
+      .def(py::init([](const RealArray& point, const RealArray& normal) {
+             const Eigen::Vector3d n = as_vector3(normal, "normal");
+             if (!(n.norm() > 0) || !n.allFinite())
+               throw py::value_error("normal: must be a finite non-zero vector");
+             return RigidPlane{as_vector3(point, "point"), n.normalized()};
+           }),
+           py::arg("point"), py::arg("normal"), "RigidPlane(point, normal); normal is normalised")
+      .def_readonly("point", &RigidPlane::point)
+      .def_readonly("normal", &RigidPlane::normal)
+      .def("__repr__", [](const RigidPlane& p) {
+        return py::str("RigidPlane(point={}, normal={})")
+            .format(py::cast(p.point).attr("tolist")(), py::cast(p.normal).attr("tolist")());
+      });
+
+  py::class_<RigidBox>(m, "RigidBox", "Rigid axis-aligned box occupying [lo, hi]")
+      .def(py::init([](const RealArray& lo, const RealArray& hi) {
+             const RigidBox box{as_vector3(lo, "lo"), as_vector3(hi, "hi")};
+             if (!(box.lo.array() < box.hi.array()).all())
+               throw py::value_error("RigidBox: need lo < hi in every coordinate");
+             return box;
+           }),
+           py::arg("lo"), py::arg("hi"))
+      .def_readonly("lo", &RigidBox::lo)
+      .def_readonly("hi", &RigidBox::hi)
+      .def("__repr__", [](const RigidBox& b) {
+        return py::str("RigidBox(lo={}, hi={})")
+            .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")());
+      });
+
+  m.def(
+      "project",
+      [](const Obstacle& obstacle, const RealArray& x) {
+        const Eigen::Vector3d xv = as_vector3(x, "x");
+        if (!xv.allFinite()) throw py::value_error("x: coordinates are not finite");
+        return project(obstacle, xv);
+      },
+      py::arg("obstacle"), py::arg("x"),
+      "Closest-point projection of the point x (3,) onto a RigidPlane or RigidBox");
+}
+
+}  // namespace hypercontact::python

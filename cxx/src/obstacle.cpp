@@ -1,0 +1,21 @@
+#include <hypercontact/obstacle.hpp>
+#include <hypercontact/rigid_box.hpp>
+#include <hypercontact/rigid_plane.hpp>
+
+namespace hypercontact {
+
+namespace {
+struct Projector {
+  const Eigen::Vector3d& x;
+  ObstacleProjection operator()(const RigidPlane& plane) const {
+    return project_to_plane(plane, x);
+  }
+  ObstacleProjection operator()(const RigidBox& box) const { return project_to_box(box, x); }
+};
+}  // namespace
+
+ObstacleProjection project(const Obstacle& obstacle, const Eigen::Vector3d& x) {
+  return std::visit(Projector{x}, obstacle);
+}
+
+}  // namespace hypercontact
