@@ -1,0 +1,4 @@
+"""UFL forms of hypercontact: material laws ψ(F) and volume formulations.
+
+Installed as the sub-package ``hypercontact.forms``.
+"""

@@ -1,0 +1,75 @@
+"""Hyperelastic material laws as plain UFL functions ψ(F, **parameters).
+
+Each law returns the strain-energy density per unit reference volume.
+Stress and tangent are never written by hand: the volume forms take
+derivatives of ψ with UFL, so ψ is the single source of a material.
+
+A user's own law is just another function with the same signature,
+``psi(F, **params) -> UFL expression``, passed to the driver (see README).
+
+Isochoric split (SPEC §3): F̂ = J^(-1/3) F, B̂ = F̂ F̂ᵀ, with the invariants
+of B̂ computed from C = FᵀF (same values, and cheaper forms).
+"""
+import ufl
+
+
+def _isochoric_invariants(F):
+    """Return (J, Ī1, Ī2_usual, Ī2_paper) of the isochoric part of F.
+
+    Ī1 = J^(-2/3) tr C,
+    Ī2 (usual) = ½ (Ī1² − tr(Ĉ²)),
+    Ī2 (paper) = tr(Ĉ²) = J^(-4/3) tr(C²)   (the paper's definition, SPEC §3).
+    """
+    C = F.T * F
+    J = ufl.det(F)
+    Jm23 = J ** (-2.0 / 3.0)
+    I1 = Jm23 * ufl.tr(C)
+    trC2_hat = Jm23 ** 2 * ufl.tr(C * C)
+    I2_usual = 0.5 * (I1 ** 2 - trC2_hat)
+    return J, I1, I2_usual, trC2_hat
+
+
+def volumetric_penalty(J, K):
+    """Ψ0(J) = K/2 (J − 1)², the paper's penalty on volume change (21)."""
+    return 0.5 * K * (J - 1.0) ** 2
+
+
+def mooney_rivlin(F, alpha1, alpha2, K, i2="usual"):
+    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + K/2 (J − 1)².
+
+    ``i2="usual"`` (default) uses Ī2 = ½(Ī1² − tr Ĉ²): small-strain shear
+    modulus 2(α1 + α2). ``i2="paper"`` uses the paper's Ī2 = tr(Ĉ²):
+    shear modulus 2α1 + 8α2. Both Ī2 equal 3 at rest.
+    """
+    J, I1, I2_usual, I2_paper = _isochoric_invariants(F)
+    if i2 == "usual":
+        I2 = I2_usual
+    elif i2 == "paper":
+        I2 = I2_paper
+    else:
+        raise ValueError(f"mooney_rivlin: i2 must be 'usual' or 'paper', got {i2!r}")
+    return alpha1 * (I1 - 3.0) + alpha2 * (I2 - 3.0) + volumetric_penalty(J, K)
+
+
+def neo_hookean(F, mu, K):
+    """Neo-Hookean with the same split: μ/2 (Ī1 − 3) + K/2 (J − 1)²."""
+    J, I1, _, _ = _isochoric_invariants(F)
+    return 0.5 * mu * (I1 - 3.0) + volumetric_penalty(J, K)
+
+
+def shear_modulus(law, params):
+    """Small-strain shear modulus of a built-in law (used for reports)."""
+    if law == "mooney_rivlin":
+        a1, a2 = params["alpha1"], params["alpha2"]
+        return 2 * (a1 + a2) if params.get("i2", "usual") == "usual" else 2 * a1 + 8 * a2
+    if law == "neo_hookean":
+        return params["mu"]
+    return None
+
+
+#: Built-in laws by scene name: function and its parameter names with defaults
+#: (None = required).
+LAWS = {
+    "mooney_rivlin": (mooney_rivlin, {"alpha1": None, "alpha2": None, "K": None, "i2": "usual"}),
+    "neo_hookean": (neo_hookean, {"mu": None, "K": None}),
+}

@@ -1,0 +1,151 @@
+"""Every dolfinx-version-specific call of hypercontact (dolfinx 0.5.2).
+
+A move to a newer FEniCSx should touch this file only.
+"""
+import numpy as np
+from mpi4py import MPI
+from petsc4py import PETSc
+
+import dolfinx
+import dolfinx.fem.petsc as fem_petsc
+import dolfinx.io
+import ufl
+from dolfinx import fem
+from dolfinx.io import gmshio
+
+
+def mesh_from_gmsh(model, comm):
+    """Distribute the gmsh model living on rank 0; return (mesh, facet_tags)."""
+    mesh, _, facet_tags = gmshio.model_to_mesh(model, comm, 0, gdim=3)
+    return mesh, facet_tags
+
+
+def vector_space(mesh, degree):
+    return fem.VectorFunctionSpace(mesh, ("Lagrange", int(degree)))
+
+
+def scalar_space(mesh, degree):
+    return fem.FunctionSpace(mesh, ("Lagrange", int(degree)))
+
+
+def compile_form(form):
+    return fem.form(form)
+
+
+def create_matrix(a):
+    return fem_petsc.create_matrix(a)
+
+
+def create_vector(L):
+    return fem_petsc.create_vector(L)
+
+
+def facets_with_tag(facet_tags, tag):
+    return facet_tags.indices[facet_tags.values == tag]
+
+
+def locate_block_dofs(V, facets):
+    """Block (node) indices of V's dofs on the given facets, process-local."""
+    tdim = V.mesh.topology.dim
+    return fem.locate_dofs_topological(V, tdim - 1, facets)
+
+
+def dirichlet_component(V, component, facets):
+    """Homogeneous condition u_component = 0 on the facets."""
+    tdim = V.mesh.topology.dim
+    Vc = V.sub(component)
+    dofs = fem.locate_dofs_topological(Vc, tdim - 1, facets)
+    return fem.dirichletbc(PETSc.ScalarType(0), dofs, Vc)
+
+
+def bc_dofs(bc):
+    """Process-local unrolled dof indices constrained by a DirichletBC."""
+    return bc.dof_indices()[0]
+
+
+def num_owned_nodes(V):
+    return V.dofmap.index_map.size_local
+
+
+def num_local_nodes(V):
+    im = V.dofmap.index_map
+    return im.size_local + im.num_ghosts
+
+
+def global_node_indices(V):
+    """Global node (block) index of each process-local node."""
+    im = V.dofmap.index_map
+    return im.local_to_global(np.arange(im.size_local + im.num_ghosts, dtype=np.int32))
+
+
+def node_coordinates(V):
+    """Reference coordinates of each process-local node, (n, 3)."""
+    return V.tabulate_dof_coordinates()[:, :3]
+
+
+def facet_integration_measure(mesh, facet_tags, quadrature_degree=None, rule=None):
+    md = {}
+    if quadrature_degree is not None:
+        md["quadrature_degree"] = int(quadrature_degree)
+    if rule is not None:
+        md["quadrature_rule"] = rule
+    return ufl.Measure("ds", domain=mesh, subdomain_data=facet_tags, metadata=md)
+
+
+def assemble_volume_residual(b, L):
+    """b ← L(u) in b's local (owned + ghost) form, ghosts not yet summed.
+
+    Contact terms are added to the local form next, then
+    :func:`finish_residual` sums ghosts and applies the Dirichlet rows."""
+    with b.localForm() as bl:
+        bl.set(0.0)
+    fem_petsc.assemble_vector(b, L)
+
+
+def finish_residual(b, a, bcs, x):
+    fem_petsc.apply_lifting(b, [a], bcs=[bcs], x0=[x], scale=-1.0)
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    fem_petsc.set_bc(b, bcs, x, -1.0)
+
+
+def assemble_tangent(A, a, bcs):
+    """A ← a(u) with the Dirichlet rows/columns replaced by the identity.
+    Left un-finalised (flushed) so that contact terms can be added."""
+    A.zeroEntries()
+    fem_petsc.assemble_matrix(A, a, bcs=bcs)
+    A.assemblyBegin(PETSc.Mat.AssemblyType.FLUSH)
+    A.assemblyEnd(PETSc.Mat.AssemblyType.FLUSH)
+
+
+def assemble_scalar(form, comm):
+    return comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
+
+
+def assemble_vector_owned(L):
+    """Assemble a linear form, sum ghost contributions; return the Vec."""
+    b = fem_petsc.assemble_vector(L)
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    return b
+
+
+def update_ghosts(u):
+    u.x.scatter_forward()
+
+
+def interpolate_constant_vector(u, value):
+    u.interpolate(lambda x: np.tile(np.asarray(value, dtype=float)[:, None], (1, x.shape[1])))
+
+
+class XDMFWriter:
+    """Time series of functions on one mesh, readable by ParaView."""
+
+    def __init__(self, comm, path, mesh):
+        self._file = dolfinx.io.XDMFFile(comm, str(path), "w")
+        self._file.write_mesh(mesh)
+
+    def write(self, functions, t):
+        for f in functions:
+            self._file.write_function(f, t)
+
+    def close(self):
+        self._file.close()

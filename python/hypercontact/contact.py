@@ -1,0 +1,97 @@
+"""Rigid-obstacle contact: the Python side of the C++ kernels.
+
+Each :class:`RigidContact` pairs one named surface of the body (the slave
+nodes) with one analytic rigid obstacle that moves with the load factor λ.
+The C++ library evaluates the paper's normal penalty per slave node
+(nodal integration: the node's area A_i = ∫_Γ N_i dA over its slave facets,
+in the reference configuration) and adds residual and tangent into the
+PETSc objects. Each slave node is evaluated once, on the rank that owns it.
+"""
+import numpy as np
+import ufl
+from mpi4py import MPI
+
+from . import _cpp
+from . import _dolfinx as dfx
+
+
+def nodal_areas(V, facet_tags, tag):
+    """A_i = ∫_Γ N_i dA on the tagged surface, owned nodes (parallel-safe:
+    assembled as a dolfinx form and summed over ranks)."""
+    v = ufl.TestFunction(V)
+    ds = dfx.facet_integration_measure(V.mesh, facet_tags, quadrature_degree=2)
+    L = dfx.compile_form(ufl.dot(v, ufl.as_vector((1.0, 0.0, 0.0))) * ds(tag))
+    b = dfx.assemble_vector_owned(L)
+    with b.localForm() as bl:
+        area = bl.array_r[0::3].copy()
+    b.destroy()
+    area[dfx.num_owned_nodes(V):] = 0.0  # ghosts are counted on their owner
+    return area
+
+
+def make_obstacle(spec, load_factor):
+    """The C++ obstacle of a scene's contact entry at load factor λ."""
+    shift = load_factor * np.asarray(spec["motion"])
+    if spec["obstacle"] == "plane":
+        return _cpp.RigidPlane(np.asarray(spec["point"]) + shift, np.asarray(spec["normal"]))
+    if spec["obstacle"] == "box":
+        return _cpp.RigidBox(np.asarray(spec["lo"]) + shift, np.asarray(spec["hi"]) + shift)
+    raise ValueError(f"unknown obstacle {spec['obstacle']!r}")
+
+
+class RigidContact:
+    """One slave surface against one rigid obstacle, normal penalty."""
+
+    def __init__(self, spec, V, facet_tags, surface_tag, constrained):
+        self.spec = spec
+        self.name = spec["name"]
+        self.eps_n = float(spec["eps_n"])
+        self.comm = V.mesh.comm
+        area = nodal_areas(V, facet_tags, surface_tag)
+        self.nodes = np.flatnonzero(area > 0.0).astype(np.int32)
+        self.area = area[self.nodes].copy()
+        dofs = (3 * self.nodes[:, None] + np.arange(3, dtype=np.int32)).astype(np.int32)
+        dofs[constrained[dofs]] = -1  # PETSc skips negative indices: Dirichlet rows stay exact
+        self.dofs = np.ascontiguousarray(dofs)
+        self.X = np.ascontiguousarray(dfx.node_coordinates(V)[self.nodes])
+        self.global_nodes = dfx.global_node_indices(V).astype(np.int64)
+        self.total_area = self.comm.allreduce(self.area.sum(), op=MPI.SUM)
+        self.num_slave_nodes = self.comm.allreduce(len(self.nodes), op=MPI.SUM)
+        self.set_load_factor(0.0)
+        self.state = None
+
+    def set_load_factor(self, load_factor):
+        self.load_factor = load_factor
+        self.obstacle = make_obstacle(self.spec, load_factor)
+
+    def current_coordinates(self, u):
+        return np.ascontiguousarray(self.X + u.x.array.reshape(-1, 3)[self.nodes])
+
+    def add_residual(self, u, b_local):
+        self.state = _cpp.assemble_rigid_residual(
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, b_local)
+
+    def add_tangent(self, u, A):
+        _cpp.assemble_rigid_tangent(
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A)
+
+    def evaluate(self, u):
+        """Gap, pressure and force of this rank's slave nodes, no assembly."""
+        scratch = np.zeros(u.x.array.size)
+        return _cpp.assemble_rigid_residual(
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, scratch)
+
+    def active_set_signature(self):
+        """(number of closed nodes, checksum of their global indices) at the
+        last residual evaluation, summed over ranks: a change of the active
+        set changes the signature."""
+        closed = self.nodes[np.asarray(self.state.gap) <= 0.0]
+        local = (len(closed), int(self.global_nodes[closed].sum()))
+        return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
+
+    def force(self, u):
+        """Total force the obstacle exerts on the body (summed over ranks)."""
+        return self.comm.allreduce(np.asarray(self.evaluate(u).force), op=MPI.SUM)
+
+    def num_closed(self, u):
+        return self.comm.allreduce(int(self.evaluate(u).num_closed), op=MPI.SUM)

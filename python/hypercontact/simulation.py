@@ -1,0 +1,246 @@
+"""A scene → a running simulation: build only the effects the scene names,
+then solve by incremental loading with automatic step control."""
+import importlib.util
+import inspect
+from pathlib import Path
+
+import numpy as np
+import ufl
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from . import _dolfinx as dfx
+from . import geometry
+from .contact import RigidContact
+from .forms import materials, volume
+from .problem import Problem, converged_reason_name, make_snes, residual_norms_of
+from .results import ResultsWriter
+from .scene import SceneError
+from .timing import Timers
+
+AXIS = {"x": 0, "y": 1, "z": 2}
+
+
+class StepFailure(RuntimeError):
+    """A load step did not converge after the allowed cut-backs."""
+
+
+def load_user_law(spec):
+    """'python:path/to/file.py:function' → the function ψ(F, **params)."""
+    try:
+        _, path, func = spec.split(":")
+    except ValueError:
+        raise SceneError(f"scene key 'material.law': expected a built-in law ({', '.join(materials.LAWS)}) "
+                         f"or 'python:FILE.py:FUNCTION', found {spec!r}") from None
+    if not Path(path).is_file():
+        raise SceneError(f"scene key 'material.law': file '{path}' does not exist")
+    module_spec = importlib.util.spec_from_file_location("user_law", path)
+    module = importlib.util.module_from_spec(module_spec)
+    try:
+        module_spec.loader.exec_module(module)
+    except Exception as err:
+        raise SceneError(f"scene key 'material.law': '{path}' raised on import: {err!r}") from None
+    if not callable(getattr(module, func, None)):
+        raise SceneError(f"scene key 'material.law': '{path}' has no function '{func}'")
+    return getattr(module, func)
+
+
+def resolve_material(mat, law=None):
+    """(psi, params, description) of the scene's material; ``law`` is a
+    Python function ψ(F, **params) given by a driver script."""
+    params = dict(mat["parameters"])
+    name = mat["law"]
+    if law is None and name in materials.LAWS:
+        law, expected = materials.LAWS[name]
+        for key, default in expected.items():
+            if key not in params:
+                if default is None:
+                    raise SceneError(f"scene key 'material.parameters.{key}': missing (required by {name})")
+                params[key] = default
+        unknown = set(params) - set(expected)
+        if unknown:
+            raise SceneError(f"scene key 'material.parameters.{sorted(unknown)[0]}': unknown parameter "
+                             f"of {name} (expected {', '.join(expected)})")
+    elif law is None:
+        law = load_user_law(name)
+    # Evaluate once on a symbolic F so that a broken law fails here, clearly.
+    try:
+        cell = ufl.hexahedron
+        F = ufl.variable(ufl.Identity(3) + ufl.grad(ufl.Coefficient(ufl.VectorElement("Lagrange", cell, 1))))
+        psi = law(F, **params)
+        if not isinstance(psi, ufl.core.expr.Expr) or psi.ufl_shape != ():
+            raise TypeError(f"must return a scalar UFL expression, returned {type(psi).__name__}")
+    except SceneError:
+        raise
+    except Exception as err:
+        raise SceneError(f"material law '{name}' with parameters {params} raised: {err}") from None
+    desc = name if name in materials.LAWS else f"user law {getattr(law, '__name__', name)}"
+    if name == "mooney_rivlin":
+        desc = f"Mooney–Rivlin ({params['i2']} I2)"
+    return law, params, desc
+
+
+class Probe:
+    """Displacement at the mesh node at a given point (owned by one rank)."""
+
+    def __init__(self, name, point, V, tol):
+        comm = V.mesh.comm
+        X = dfx.node_coordinates(V)[: dfx.num_owned_nodes(V)]
+        d = np.linalg.norm(X - np.asarray(point), axis=1) if len(X) else np.array([np.inf])
+        i = int(np.argmin(d))
+        best = comm.allreduce((float(d[i]), comm.rank), op=MPI.MINLOC)
+        if best[0] > tol:
+            raise SceneError(f"scene key 'output.probes.{name}': no mesh node at {point} "
+                             f"(nearest is {best[0]:.3g} away)")
+        self.comm, self.owner, self.node = comm, best[1], i
+
+    def value(self, u):
+        local = u.x.array.reshape(-1, 3)[self.node] if self.comm.rank == self.owner else np.zeros(3)
+        return self.comm.allreduce(np.asarray(local), op=MPI.SUM)
+
+
+class Simulation:
+    """Everything one scene needs, built once; :meth:`run` solves it."""
+
+    def __init__(self, scene, comm=MPI.COMM_WORLD, law=None, log=None):
+        self.scene, self.comm = scene, comm
+        self.log = log if log is not None else (print if comm.rank == 0 else (lambda *a, **k: None))
+        self.timers = Timers()
+        with self.timers("setup"):
+            self._build(law)
+
+    def _build(self, law):
+        sc = self.scene
+        mesh = sc["mesh"]
+        if mesh["builder"] == "file":
+            body = geometry.read_msh(self.comm, mesh["file"])
+        else:
+            body = geometry.build_box(self.comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
+        self.body = body
+        self.V = dfx.vector_space(body.mesh, sc["discretisation"]["degree"])
+        self.u = dfx.fem.Function(self.V, name="displacement")
+        psi, params, mat_desc = resolve_material(sc["material"], law)
+        R, J = volume.displacement_forms(self.u, psi, params, sc["discretisation"]["quadrature_degree"])
+
+        def tag_of(surface, key):
+            if surface not in body.surfaces:
+                raise SceneError(f"scene key '{key}': the mesh has no surface {surface!r} "
+                                 f"(it has {', '.join(sorted(body.surfaces))})")
+            return body.surfaces[surface]
+
+        self.bcs = []
+        for i, bc in enumerate(sc["bc"]):
+            facets = dfx.facets_with_tag(body.facet_tags, tag_of(bc["surface"], f"bc[{i}].surface"))
+            self.bcs += [dfx.dirichlet_component(self.V, AXIS[a], facets) for a in bc["fix"]]
+        constrained = np.zeros(self.u.x.array.size, dtype=bool)
+        for bc in self.bcs:
+            constrained[dfx.bc_dofs(bc)] = True
+
+        self.contacts = []
+        for i, c in enumerate(sc["contact"]):
+            tag = tag_of(c["surface"], f"contact[{i}].surface")
+            if sc["discretisation"]["degree"] != 1:
+                raise SceneError(f"scene key 'discretisation.degree': contact needs degree 1 (found "
+                                 f"{sc['discretisation']['degree']})")
+            self.contacts.append(RigidContact(c, self.V, body.facet_tags, tag, constrained))
+
+        size = np.ptp(body.mesh.geometry.x, axis=0).max()
+        size = self.comm.allreduce(size, op=MPI.MAX)
+        self.probes = {name: Probe(name, p, self.V, 1e-6 * size)
+                       for name, p in sc["output"]["probes"].items()}
+        self.problem = Problem(self.u, R, J, self.bcs, self.contacts, self.timers)
+        self.snes = make_snes(self.problem, self.comm, sc["solver"])
+        self.snes.setConvergenceHistory(length=sc["solver"]["max_it"] + 1, reset=True)
+        self.snes.setMonitor(self._monitor)
+        self.active_sets, self.update_norms = [], []
+        n_rigid = len(self.contacts)
+        contact_desc = (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
+                        if n_rigid else "no contact")
+        self.effects = [mat_desc, contact_desc, "load control"]
+
+    def _monitor(self, snes, its, norm):
+        """Per Newton iteration: the norm of the Newton correction and the
+        contact active set of the current iterate."""
+        if its == 0:
+            self.active_sets, self.update_norms = [], []
+        else:
+            self.update_norms.append(snes.getSolutionUpdate().norm())
+        self.active_sets.append([c.active_set_signature() for c in self.contacts])
+
+    def set_load_factor(self, lam):
+        for c in self.contacts:
+            c.set_load_factor(lam)
+
+    def solve_step(self):
+        """One Newton solve at the current load factor: (converged, its, norms, reason)."""
+        x = self.problem.x
+        self.u.vector.copy(x)
+        self.snes.solve(None, x)
+        reason = self.snes.getConvergedReason()
+        norms = residual_norms_of(self.snes)
+        converged = reason > 0 and np.all(np.isfinite(x.array))
+        if converged:
+            x.copy(self.u.vector)
+            dfx.update_ghosts(self.u)
+        return converged, self.snes.getIterationNumber(), norms, converged_reason_name(reason)
+
+    def last_active_set_change(self):
+        """Index of the first Newton iterate from which the active set stayed
+        fixed in the last solve."""
+        k = len(self.active_sets) - 1
+        while k > 0 and self.active_sets[k - 1] == self.active_sets[-1]:
+            k -= 1
+        return k
+
+    def run(self, out_dir=None):
+        """Incremental loading λ: 0 → 1. Returns the results writer; raises
+        :class:`StepFailure` after writing everything that converged."""
+        st = self.scene["steps"]
+        out_dir = out_dir or self.scene["output"]["dir"]
+        PETSc.Log.begin()
+        ksp_event = PETSc.Log.Event("KSPSolve")
+        ksp0 = ksp_event.getPerfInfo()["time"]
+        writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes)
+        self.log(f"hypercontact: {', '.join(self.effects)}; "
+                 f"{self.V.dofmap.index_map.size_global * 3} unknowns on {self.comm.size} rank(s)")
+        lam, dlam, cuts = 0.0, st["initial"], 0
+        u_saved = self.u.x.array.copy()
+
+        def split():
+            self.timers.seconds["linear solve"] = ksp_event.getPerfInfo()["time"] - ksp0
+            return self.timers
+
+        try:
+            while lam < 1.0 - 1e-12:
+                dlam = min(dlam, 1.0 - lam)
+                self.set_load_factor(lam + dlam)
+                ok, its, norms, reason = self.solve_step()
+                if ok:
+                    lam += dlam
+                    cuts = 0
+                    u_saved[:] = self.u.x.array
+                    with self.timers("output"):
+                        row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
+                                                self.update_norms)
+                    self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
+                             f"|R| = {norms[-1]:.2e}  ({reason})")
+                    if its <= st["grow_below"]:
+                        dlam = min(dlam * st["growth"], st["max"])
+                    continue
+                self.u.x.array[:] = u_saved
+                cuts += 1
+                dlam *= 0.5
+                self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "
+                         f"cut back to Δλ = {dlam:.3g}")
+                if cuts > st["max_cutbacks"] or dlam < st["min"]:
+                    raise StepFailure(
+                        f"load step from λ = {lam:.6g} did not converge after {cuts - 1} cut-backs "
+                        f"(last Δλ = {2 * dlam:.3g}, SNES reason {reason}); "
+                        f"{len(writer.steps)} converged step(s) are in {out_dir}")
+        except BaseException as err:
+            self.set_load_factor(lam)
+            message = str(err) or type(err).__name__
+            writer.finish("interrupted" if isinstance(err, KeyboardInterrupt) else "failed", message, split())
+            raise
+        writer.finish("completed", "", split())
+        return writer

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs everything hypercontact needs on Debian 12, builds the C++ library
+# and its Python extension, and installs the package into .venv.
+# Quick when everything is already there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  python3-dolfinx libdolfinx-dev petsc-dev python3-petsc4py python3-mpi4py
+  python3-gmsh python3-meshio python3-matplotlib python3-pytest python3-scipy python3-venv
+  libeigen3-dev pybind11-dev python3-pybind11 libgtest-dev libopenblas0-pthread
+  cmake g++ make openmpi-bin
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
+cmake --build build -j2 >> build.log 2>&1 || { cat build.log; exit 1; }
+
+if [ ! -x .venv/bin/python ]; then
+  /usr/bin/python3 -m venv --system-site-packages .venv
+fi
+if ! .venv/bin/python -c "import hypercontact._cpp, hypercontact.forms" 2>/dev/null; then
+  .venv/bin/pip install -q --no-build-isolation --no-deps -e .
+fi
+echo "setup: ready (.venv/bin/hypercontact)"

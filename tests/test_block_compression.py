@@ -1,0 +1,52 @@
+"""A block between two frictionless rigid planes is in a homogeneous state:
+the computed force must match the closed form from ψ (tests/reference)."""
+import numpy as np
+import pytest
+from conftest import quiet
+from mpi4py import MPI
+
+from hypercontact import scene
+from hypercontact.simulation import Simulation
+from reference.homogeneous import compressed_block, mooney_rivlin_principal
+
+PARAMS = dict(alpha1=0.1863, alpha2=0.0098, K=5.0)
+EPS = 50.0
+D = 0.2
+
+
+def block_scene(out, i2="usual", law="mooney_rivlin"):
+    return {
+        "mesh": {"builder": "box", "size": [1.0, 1.0, 1.0], "n": 2, "m": 2},
+        "material": {"law": law, "parameters": {**PARAMS, "i2": i2}},
+        "bc": [{"surface": "xmin", "fix": ["x"]}, {"surface": "ymin", "fix": ["y"]}],
+        "contact": [
+            {"name": "top", "surface": "zmax", "obstacle": "plane", "point": [0, 0, 1.0],
+             "normal": [0, 0, -1.0], "motion": [0, 0, -D], "eps_n": EPS},
+            {"name": "base", "surface": "zmin", "obstacle": "plane", "point": [0, 0, 0],
+             "normal": [0, 0, 1.0], "eps_n": EPS},
+        ],
+        "steps": {"initial": 0.25, "max": 0.5},
+        "solver": {"rtol": 1e-12, "atol": 1e-12},
+        "output": {"dir": str(out), "xdmf": False},
+    }
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("i2", ["usual", "paper"])
+def test_force_matches_closed_form(i2, out_dir):
+    sim = Simulation(scene.load(block_scene(out_dir, i2)), MPI.COMM_WORLD, log=quiet)
+    sim.run()
+    top, base = sim.contacts
+    f_top = top.force(sim.u)
+    lat, l3, P3 = compressed_block(
+        lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS, i2=i2), 1.0, D, EPS)
+    assert P3 < 0
+    assert f_top[2] == pytest.approx(P3 * 1.0, rel=1e-6)
+    assert base.force(sim.u)[2] == pytest.approx(-P3, rel=1e-6)
+    # the homogeneous state itself: lateral stretch at a corner node
+    corner = np.array([1.0, 1.0, 1.0])
+    X = sim.V.tabulate_dof_coordinates()[: sim.V.dofmap.index_map.size_local]
+    hit = np.flatnonzero(np.linalg.norm(X - corner, axis=1) < 1e-12)
+    if hit.size:
+        ux = sim.u.x.array.reshape(-1, 3)[hit[0], 0]
+        assert 1.0 + ux == pytest.approx(lat, rel=1e-6)
