@@ -40,6 +40,15 @@ def test_invalid_scene_names_the_key(tmp_path, capsys, old, new, expected):
     assert "Traceback" not in err
 
 
+def test_unreadable_mesh_file_names_the_file(tmp_path, capsys):
+    bad = tmp_path / "garbage.msh"
+    bad.write_text("this is not a mesh\n")
+    path = write_scene(tmp_path, 'builder = "box"', f'builder = "file"\nfile = "{bad}"')
+    assert cli.main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "garbage.msh" in err and "Traceback" not in err
+
+
 def test_set_override_and_check(capsys):
     assert cli.main(["check", str(PUNCH), "--set", "mesh.n=32", "--set", "contact.0.eps_n=10"]) == 0
     sc = scene.load(PUNCH, ["mesh.n=32", "contact.0.eps_n=10"])

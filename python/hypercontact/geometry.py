@@ -34,6 +34,16 @@ def _gmsh():
     return gmsh
 
 
+def _reset_gmsh():
+    """Finalise gmsh after an error: a failed gmsh.open leaves state behind
+    that makes later models mesh without volume elements."""
+    global _gmsh_ready
+    import gmsh
+
+    gmsh.finalize()
+    _gmsh_ready = False
+
+
 def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0)):
     """Structured hexahedral box [origin, origin+size], n × n × m elements.
 
@@ -112,7 +122,7 @@ def _from_gmsh(comm, make):
     error = comm.bcast(error, root=0)
     if error is not None:
         if comm.rank == 0:
-            gmsh.clear()
+            _reset_gmsh()
         raise error
     names = comm.bcast(names, root=0)
     mesh, facet_tags = dfx.mesh_from_gmsh(gmsh.model if comm.rank == 0 else None, comm)

@@ -178,6 +178,11 @@ def _check_consistency(scene, base_dir):
         mesh["file"] = str(f)
     elif mesh["file"]:
         _fail("mesh.file", 'given, but mesh.builder is not "file"')
+    law = scene["material"]["law"]
+    if law.startswith("python:") and law.count(":") == 2:
+        _, path, func = law.split(":")
+        if not Path(path).is_absolute():
+            scene["material"]["law"] = f"python:{(base_dir / path).resolve()}:{func}"
     steps = scene["steps"]
     if steps["min"] > steps["initial"]:
         _fail("steps.min", f"must not exceed steps.initial ({steps['initial']}), found {steps['min']}")
