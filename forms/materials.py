@@ -34,8 +34,8 @@ def volumetric_penalty(J, K):
     return 0.5 * K * (J - 1.0) ** 2
 
 
-def mooney_rivlin(F, alpha1, alpha2, K, i2="usual"):
-    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + K/2 (J − 1)².
+def mooney_rivlin_isochoric(F, alpha1, alpha2, i2="usual"):
+    """Isochoric part of Mooney–Rivlin: α1 (Ī1 − 3) + α2 (Ī2 − 3).
 
     ``i2="usual"`` (default) uses Ī2 = ½(Ī1² − tr Ĉ²): small-strain shear
     modulus 2(α1 + α2). ``i2="paper"`` uses the paper's Ī2 = tr(Ĉ²):
@@ -48,13 +48,23 @@ def mooney_rivlin(F, alpha1, alpha2, K, i2="usual"):
         I2 = I2_paper
     else:
         raise ValueError(f"mooney_rivlin: i2 must be 'usual' or 'paper', got {i2!r}")
-    return alpha1 * (I1 - 3.0) + alpha2 * (I2 - 3.0) + volumetric_penalty(J, K)
+    return alpha1 * (I1 - 3.0) + alpha2 * (I2 - 3.0)
+
+
+def mooney_rivlin(F, alpha1, alpha2, K, i2="usual"):
+    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + K/2 (J − 1)²."""
+    return mooney_rivlin_isochoric(F, alpha1, alpha2, i2) + volumetric_penalty(ufl.det(F), K)
+
+
+def neo_hookean_isochoric(F, mu):
+    """Isochoric part of neo-Hookean: μ/2 (Ī1 − 3)."""
+    _, I1, _, _ = _isochoric_invariants(F)
+    return 0.5 * mu * (I1 - 3.0)
 
 
 def neo_hookean(F, mu, K):
     """Neo-Hookean with the same split: μ/2 (Ī1 − 3) + K/2 (J − 1)²."""
-    J, I1, _, _ = _isochoric_invariants(F)
-    return 0.5 * mu * (I1 - 3.0) + volumetric_penalty(J, K)
+    return neo_hookean_isochoric(F, mu) + volumetric_penalty(ufl.det(F), K)
 
 
 def shear_modulus(law, params):
@@ -72,4 +82,11 @@ def shear_modulus(law, params):
 LAWS = {
     "mooney_rivlin": (mooney_rivlin, {"alpha1": None, "alpha2": None, "K": None, "i2": "usual"}),
     "neo_hookean": (neo_hookean, {"mu": None, "K": None}),
+}
+
+#: Isochoric parts of the built-in laws, whose volumetric part is K/2 (J − 1)²:
+#: what the selective reduced integration and mixed formulations need.
+ISOCHORIC = {
+    "mooney_rivlin": mooney_rivlin_isochoric,
+    "neo_hookean": neo_hookean_isochoric,
 }

@@ -28,3 +28,24 @@ def displacement_forms(u, psi, params, quadrature_degree):
     R = ufl.derivative(energy, u, v)
     J = ufl.derivative(R, u, du)
     return R, J
+
+
+def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree):
+    """Selective reduced integration: the isochoric energy with the full rule,
+    the volumetric penalty K/2 (J − 1)² with one point per hexahedron (the
+    constant-pressure mode only), which removes volumetric locking of
+    trilinear hexahedra as K grows.
+
+    ``psi_iso(F, **params)`` is the isochoric part of the law.
+    """
+    V = u.function_space
+    v = ufl.TestFunction(V)
+    du = ufl.TrialFunction(V)
+    dim = len(u)
+    F = ufl.variable(ufl.Identity(dim) + ufl.grad(u))
+    dx_full = ufl.dx(metadata={"quadrature_degree": int(quadrature_degree)})
+    dx_one = ufl.dx(metadata={"quadrature_degree": 1})
+    J = ufl.det(F)
+    energy = psi_iso(F, **params) * dx_full + 0.5 * K * (J - 1.0) ** 2 * dx_one
+    R = ufl.derivative(energy, u, v)
+    return R, ufl.derivative(R, u, du)

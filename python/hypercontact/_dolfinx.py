@@ -128,6 +128,21 @@ def assemble_vector_owned(L):
     return b
 
 
+def assemble_vector_into(b, L):
+    """b += L, ghost contributions summed onto owners."""
+    fem_petsc.assemble_vector(b, L)
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+
+
+def zero_bc_rows(b, bcs):
+    """b[dofs of bcs] = 0."""
+    fem_petsc.set_bc(b, bcs, scale=0.0)
+
+
+def constant(mesh, value):
+    return fem.Constant(mesh, PETSc.ScalarType(value))
+
+
 def update_ghosts(u):
     u.x.scatter_forward()
 

@@ -24,6 +24,9 @@ def _parser():
 
 def main(argv=None):
     args = _parser().parse_args(argv)
+    import logging
+
+    logging.getLogger().setLevel(logging.WARNING)  # FFCx's JIT logs every compilation at INFO
     from mpi4py import MPI
 
     comm = MPI.COMM_WORLD

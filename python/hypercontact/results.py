@@ -27,6 +27,7 @@ class ResultsWriter:
         self.out = Path(out_dir)
         self.factor = scene["output"]["symmetry_factor"]
         self.steps = []
+        self.limit_points = []
         self.status, self.message = "running", ""
         self.started = time.perf_counter()
         self.rank0 = comm.rank == 0
@@ -46,6 +47,8 @@ class ResultsWriter:
             self.columns += [f"{c.name}_closed_nodes"]
         for name in probes:
             self.columns += [f"{name}_u{a}" for a in "xyz"]
+        self.pressures = {f"pressure_{p['surface']}": p["value"] for p in scene["pressure"]}
+        self.columns += list(self.pressures)
         if self.rank0:
             self._csv_file = open(self.out / "curves.csv", "w", newline="")
             self._csv = csv.writer(self._csv_file)
@@ -65,6 +68,8 @@ class ResultsWriter:
         for name, probe in self.probes.items():
             for a, value in zip("xyz", probe.value(self.u)):
                 row[f"{name}_u{a}"] = float(value)
+        for name, value in self.pressures.items():
+            row[name] = load_factor * value
         self.steps.append({**row, "residual_norms": norms, "active_set_settled_at": settled_from,
                            "update_norms": list(update_norms)})
         if self.rank0:
@@ -104,7 +109,7 @@ class ResultsWriter:
             "status": self.status, "message": self.message, "effects": self.effects,
             "ranks": self.comm.size, "wall_time": wall, "time_split": split,
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
-            "steps": self.steps, "scene": self.scene,
+            "limit_points": self.limit_points, "steps": self.steps, "scene": self.scene,
         }
         if self.rank0:
             tmp = self.out / "summary.json.tmp"

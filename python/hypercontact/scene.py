@@ -60,7 +60,10 @@ AXES = (lambda x: len(x) > 0 and set(x) <= {"x", "y", "z"}, 'a non-empty subset 
 SCHEMA = {
     "title": Key("string", ""),
     "mesh": {
-        "builder": Key("string", "box", (lambda x: x in ("box", "file"), '"box" or "file"')),
+        "builder": Key("string", "box", (lambda x: x in ("box", "shell_octant", "file"),
+                                          '"box", "shell_octant" or "file"')),
+        "inner_radius": Key("number", 95.0, POSITIVE),
+        "thickness": Key("number", 1.0, POSITIVE),
         "size": Key("vector", [1.0, 1.0, 1.0], (_positive_vec, "all sizes > 0")),
         "origin": Key("vector", [0.0, 0.0, 0.0]),
         "n": Key("integer", 4, POSITIVE),
@@ -74,7 +77,13 @@ SCHEMA = {
     "discretisation": {
         "degree": Key("integer", 1, (lambda x: x in (1, 2), "1 or 2")),
         "quadrature_degree": Key("integer", 2, POSITIVE),
+        "formulation": Key("string", "displacement", (lambda x: x in ("displacement", "sri"),
+                                                      '"displacement" or "sri" (selective reduced integration)')),
     },
+    "pressure": [{
+        "surface": Key("string", REQUIRED),
+        "value": Key("number", REQUIRED),
+    }],
     "bc": [{
         "surface": Key("string", REQUIRED),
         "fix": Key("strings", REQUIRED, AXES),
@@ -92,12 +101,19 @@ SCHEMA = {
         "mu": Key("number", 0.0, NON_NEGATIVE),
     }],
     "steps": {
+        "control": Key("string", "load", (lambda x: x in ("load", "arclength", "displacement"),
+                                          '"load", "arclength" or "displacement"')),
         "initial": Key("number", 0.1, POSITIVE, (lambda x: x <= 1, "<= 1")),
         "min": Key("number", 1e-4, POSITIVE),
         "max": Key("number", 0.25, POSITIVE, (lambda x: x <= 1, "<= 1")),
         "max_cutbacks": Key("integer", 8, NON_NEGATIVE),
         "grow_below": Key("integer", 5, NON_NEGATIVE),
         "growth": Key("number", 1.5, (lambda x: x >= 1, ">= 1")),
+        "max_steps": Key("integer", 200, POSITIVE),
+        "target_iterations": Key("integer", 5, POSITIVE),
+        "stop_probe": Key("string", ""),
+        "stop_component": Key("string", "x", (lambda x: x in ("x", "y", "z"), '"x", "y" or "z"')),
+        "stop_value": Key("number", 1.0),
     },
     "solver": {
         "rtol": Key("number", 1e-10, POSITIVE),
@@ -197,6 +213,14 @@ def _check_consistency(scene, base_dir):
     for name, point in scene["output"]["probes"].items():
         if not _vec3(point):
             _fail(f"output.probes.{name}", f"expected a list of three numbers, found {_describe(point)}")
+    if steps["control"] != "load":
+        if steps["stop_probe"] not in scene["output"]["probes"]:
+            _fail("steps.stop_probe", f"{steps['control']} control needs a probe of output.probes "
+                  f"(found {steps['stop_probe']!r}; probes: {', '.join(scene['output']['probes']) or 'none'})")
+        if not scene["pressure"]:
+            _fail("steps.control", f"{steps['control']} control needs a load: a [[pressure]] entry")
+        if any(any(c["motion"]) for c in scene["contact"]):
+            _fail("steps.control", f"{steps['control']} control with moving obstacles is not supported yet")
     for i, bc in enumerate(scene["bc"]):
         if len(set(bc["fix"])) != len(bc["fix"]):
             _fail(f"bc[{i}].fix", f"repeated axis in {bc['fix']}")

@@ -12,7 +12,9 @@ from petsc4py import PETSc
 from . import _dolfinx as dfx
 from . import geometry
 from .contact import RigidContact
-from .forms import materials, volume
+from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
+from .continuation import step as continuation_step
+from .forms import loads, materials, volume
 from .problem import Problem, converged_reason_name, make_snes, residual_norms_of
 from .results import ResultsWriter
 from .scene import SceneError
@@ -114,13 +116,28 @@ class Simulation:
         mesh = sc["mesh"]
         if mesh["builder"] == "file":
             body = geometry.read_msh(self.comm, mesh["file"])
+        elif mesh["builder"] == "shell_octant":
+            from .shell import build_shell_octant
+
+            body = build_shell_octant(self.comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
         else:
             body = geometry.build_box(self.comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
         self.body = body
         self.V = dfx.vector_space(body.mesh, sc["discretisation"]["degree"])
         self.u = dfx.fem.Function(self.V, name="displacement")
         psi, params, mat_desc = resolve_material(sc["material"], law)
-        R, J = volume.displacement_forms(self.u, psi, params, sc["discretisation"]["quadrature_degree"])
+        disc = sc["discretisation"]
+        if disc["formulation"] == "sri":
+            name = sc["material"]["law"]
+            if law is not None or name not in materials.ISOCHORIC:
+                raise SceneError("scene key 'discretisation.formulation': selective reduced integration "
+                                 f"needs a built-in law ({', '.join(materials.ISOCHORIC)}), found {name!r}")
+            iso_params = {k: v for k, v in params.items() if k != "K"}
+            R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"],
+                                                  disc["quadrature_degree"])
+            mat_desc += ", selective reduced integration"
+        else:
+            R, J = volume.displacement_forms(self.u, psi, params, disc["quadrature_degree"])
 
         def tag_of(surface, key):
             if surface not in body.surfaces:
@@ -135,6 +152,18 @@ class Simulation:
         constrained = np.zeros(self.u.x.array.size, dtype=bool)
         for bc in self.bcs:
             constrained[dfx.bc_dofs(bc)] = True
+
+        # Follower pressures p = λ × value: residual terms, and q = ∂R/∂λ for continuation.
+        self.load_factor = dfx.constant(body.mesh, 0.0)
+        self.q_form = None
+        v, du = ufl.TestFunction(self.V), ufl.TrialFunction(self.V)
+        ds = dfx.facet_integration_measure(body.mesh, body.facet_tags, disc["quadrature_degree"])
+        for i, pr in enumerate(sc["pressure"]):
+            term = loads.follower_pressure(self.u, v, pr["value"], ds(tag_of(pr["surface"], f"pressure[{i}].surface")))
+            self.q_form = term if self.q_form is None else self.q_form + term
+        if self.q_form is not None:
+            R = R + self.load_factor * self.q_form
+            J = J + self.load_factor * ufl.derivative(self.q_form, self.u, du)
 
         self.contacts = []
         for i, c in enumerate(sc["contact"]):
@@ -156,7 +185,11 @@ class Simulation:
         n_rigid = len(self.contacts)
         contact_desc = (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
                         if n_rigid else "no contact")
-        self.effects = [mat_desc, contact_desc, "load control"]
+        control = {"load": "load control", "arclength": "arc-length continuation",
+                   "displacement": "displacement control"}[sc["steps"]["control"]]
+        n_p = len(sc["pressure"])
+        self.effects = [mat_desc, contact_desc] + ([f"{n_p} follower pressure{'s' if n_p > 1 else ''}"] if n_p else [])
+        self.effects.append(control)
 
     def _monitor(self, snes, its, norm):
         """Per Newton iteration: the norm of the Newton correction and the
@@ -168,6 +201,7 @@ class Simulation:
         self.active_sets.append([c.active_set_signature() for c in self.contacts])
 
     def set_load_factor(self, lam):
+        self.load_factor.value = lam
         for c in self.contacts:
             c.set_load_factor(lam)
 
@@ -203,48 +237,123 @@ class Simulation:
         writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes)
         self.log(f"hypercontact: {', '.join(self.effects)}; "
                  f"{self.V.dofmap.index_map.size_global * 3} unknowns on {self.comm.size} rank(s)")
-        lam, dlam, cuts = 0.0, st["initial"], 0
-        u_saved = self.u.x.array.copy()
 
         def split():
             """Linear solve = SNES time less residual and Jacobian evaluation
-            (factorisation, triangular solves and line-search vector work)."""
-            t = {name: e.getPerfInfo()["time"] - t0[name] for name, e in events.items()}
-            self.timers.seconds["linear solve"] = max(
-                t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"], 0.0)
+            (factorisation, triangular solves and line-search vector work);
+            continuation times its own solves."""
+            if st["control"] == "load":
+                t = {name: e.getPerfInfo()["time"] - t0[name] for name, e in events.items()}
+                self.timers.seconds["linear solve"] = max(
+                    t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"], 0.0)
             return self.timers
 
+        self._lam = 0.0
         try:
-            while lam < 1.0 - 1e-12:
-                dlam = min(dlam, 1.0 - lam)
-                self.set_load_factor(lam + dlam)
-                ok, its, norms, reason = self.solve_step()
-                if ok:
-                    lam += dlam
-                    cuts = 0
-                    u_saved[:] = self.u.x.array
-                    with self.timers("output"):
-                        row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
-                                                self.update_norms)
-                    self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
-                             f"|R| = {norms[-1]:.2e}  ({reason})")
-                    if its <= st["grow_below"]:
-                        dlam = min(dlam * st["growth"], st["max"])
-                    continue
-                self.u.x.array[:] = u_saved
-                cuts += 1
-                dlam *= 0.5
-                self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "
-                         f"cut back to Δλ = {dlam:.3g}")
-                if cuts > st["max_cutbacks"] or dlam < st["min"]:
-                    raise StepFailure(
-                        f"load step from λ = {lam:.6g} did not converge after {cuts - 1} cut-backs "
-                        f"(last Δλ = {2 * dlam:.3g}, SNES reason {reason}); "
-                        f"{len(writer.steps)} converged step(s) are in {out_dir}")
+            if st["control"] == "load":
+                self._load_control(writer, split, out_dir)
+            else:
+                self._continuation(writer, split, out_dir)
         except BaseException as err:
-            self.set_load_factor(lam)
+            self.set_load_factor(self._lam)
             message = str(err) or type(err).__name__
             writer.finish("interrupted" if isinstance(err, KeyboardInterrupt) else "failed", message, split())
             raise
         writer.finish("completed", "", split())
         return writer
+
+    def _load_control(self, writer, split, out_dir):
+        """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
+        st = self.scene["steps"]
+        lam, dlam, cuts = 0.0, st["initial"], 0
+        u_saved = self.u.x.array.copy()
+
+        while lam < 1.0 - 1e-12:
+            dlam = min(dlam, 1.0 - lam)
+            self.set_load_factor(lam + dlam)
+            ok, its, norms, reason = self.solve_step()
+            if ok:
+                lam += dlam
+                self._lam = lam
+                cuts = 0
+                u_saved[:] = self.u.x.array
+                with self.timers("output"):
+                    row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
+                                            self.update_norms)
+                self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
+                         f"|R| = {norms[-1]:.2e}  ({reason})")
+                if its <= st["grow_below"]:
+                    dlam = min(dlam * st["growth"], st["max"])
+                continue
+            self.u.x.array[:] = u_saved
+            cuts += 1
+            dlam *= 0.5
+            self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "
+                     f"cut back to Δλ = {dlam:.3g}")
+            if cuts > st["max_cutbacks"] or dlam < st["min"]:
+                raise StepFailure(
+                    f"load step from λ = {lam:.6g} did not converge after {cuts - 1} cut-backs "
+                    f"(last Δλ = {2 * dlam:.3g}, SNES reason {reason}); "
+                    f"{len(writer.steps)} converged step(s) are in {out_dir}")
+
+    def _continuation(self, writer, split, out_dir):
+        """Arc-length or displacement control (see continuation.py) until the
+        stop probe's displacement component reaches steps.stop_value."""
+        st, sv = self.scene["steps"], self.scene["solver"]
+        bordered = Bordered(self.problem, self.q_form, self.bcs, self.comm, sv["petsc"], timers=self.timers)
+        x = self.problem.x
+        self.u.vector.copy(x)
+        probe = self.probes[st["stop_probe"]]
+        axis = AXIS[st["stop_component"]]
+        target = st["stop_value"]
+        if st["control"] == "arclength":
+            self.set_load_factor(0.0)
+            bordered.assemble(x)
+            size = st["initial"] * bordered.tangent_direction().norm()
+            constraint = ArcLengthConstraint(size)
+        else:
+            owner_dof = 3 * probe.node + axis if self.comm.rank == probe.owner else -1
+            constraint = DisplacementConstraint(owner_dof, probe.owner, self.comm, st["initial"] * target)
+        size0 = constraint.size
+        lam, du_prev, cuts, last_dlam = 0.0, None, 0, None
+        while len(writer.steps) < st["max_steps"]:
+            reached = probe.value(self.u)[axis]
+            if (reached - target) * np.sign(target) >= -1e-12 * abs(target):
+                return
+            if st["control"] == "displacement":
+                constraint.size = np.sign(target) * min(abs(constraint.size), abs(target - reached))
+            try:
+                Du, dlam, its, norms = continuation_step(
+                    bordered, constraint, x, lam, du_prev, self.set_load_factor,
+                    sv["rtol"], sv["atol"], sv["max_it"])
+            except ContinuationFailure as err:
+                x.copy(self.u.vector)  # the failed iterates passed through u
+                dfx.update_ghosts(self.u)
+                cuts += 1
+                constraint.scale(0.5)
+                self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
+                if cuts > st["max_cutbacks"] or abs(constraint.size) < st["min"] * abs(size0):
+                    raise StepFailure(
+                        f"{constraint.name} step from λ = {lam:.6g} did not converge after {cuts - 1} "
+                        f"cut-backs ({err}); {len(writer.steps)} converged step(s) are in {out_dir}") from None
+                continue
+            cuts = 0
+            lam += dlam
+            self._lam, du_prev = lam, Du
+            x.copy(self.u.vector)
+            dfx.update_ghosts(self.u)
+            if last_dlam is not None and dlam * last_dlam < 0:
+                writer.limit_points.append({"after_step": len(writer.steps), "load_factor": lam - dlam})
+                self.log(f"   limit point: the load factor turned at λ ≈ {lam - dlam:.6g}")
+            last_dlam = dlam
+            with self.timers("output"):
+                row = writer.write_step(lam, its, norms, split())
+            self.log(f"step {row['step']:3d}  λ = {lam:.5f}  {st['stop_probe']} u{st['stop_component']} = "
+                     f"{probe.value(self.u)[axis]:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}")
+            factor = float(np.clip(np.sqrt(st["target_iterations"] / max(its, 1)), 0.5, 2.0))
+            if st["control"] == "arclength":
+                constraint.size = min(constraint.size * factor, size0 * st["max"] / st["initial"])
+            else:
+                constraint.size = np.sign(target) * min(abs(constraint.size) * factor, abs(target) * st["max"])
+        raise StepFailure(f"steps.max_steps = {st['max_steps']} reached before {st['stop_probe']} "
+                          f"u{st['stop_component']} = {target}; {len(writer.steps)} steps are in {out_dir}")

@@ -1,0 +1,17 @@
+"""External loads as residual contributions (R = δΠ_int − δW_ext).
+
+Follower pressure p on a surface of the deformed body: the traction in the
+current configuration is t = −p n (p > 0 pushes against the body's outward
+normal n). Pulled back with Nanson's formula n da = J F⁻ᵀ N dA, the residual
+term is ∫_Γ0 p J F⁻ᵀ N · v dA. It depends on u, so its derivative (by UFL)
+adds a non-symmetric load-stiffness to the tangent.
+"""
+import ufl
+
+
+def follower_pressure(u, v, p, ds):
+    """Residual term of a follower pressure p (scalar or UFL expression) on ds."""
+    dim = len(u)
+    F = ufl.Identity(dim) + ufl.grad(u)
+    N = ufl.FacetNormal(u.function_space.mesh)
+    return p * ufl.det(F) * ufl.dot(ufl.inv(F).T * N, v) * ds

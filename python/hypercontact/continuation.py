@@ -1,0 +1,175 @@
+"""Path following past limit points: arc-length and displacement control.
+
+Unknowns (u, λ) with R(u, λ) = R_int(u) + λ q(u) (q = ∂R/∂λ, e.g. a follower
+pressure per unit load factor) and one constraint c(Δu, Δλ) = 0 on the
+increment of the step. Each Newton iteration factorises the tangent
+K = ∂R/∂u once and solves twice (bordering):
+
+    K δu_R = −R,   K t = −q,   δu = δu_R + δλ t,
+
+with δλ from the constraint:
+- arc length (Crisfield, cylindrical): |Δu + δu|² = Δl², a quadratic in δλ
+  whose root keeps the increment pointing forward (largest Δu_old·Δu_new);
+- displacement control: e·(Δu + δu) = Δs for one controlled dof e.
+
+PETSc 3.18 has no arc-length SNES; this is the project's own.
+"""
+import numpy as np
+from petsc4py import PETSc
+
+from . import _dolfinx as dfx
+
+
+class ContinuationFailure(RuntimeError):
+    """A continuation step did not converge (or the constraint has no root)."""
+
+
+class Bordered:
+    """Newton–bordering solves for R(u, λ) = 0 plus one constraint."""
+
+    def __init__(self, problem, q_form, bcs, comm, petsc_options, timers, prefix="hcc_"):
+        self.problem, self.bcs, self.comm, self.timers = problem, bcs, comm, timers
+        self.q_form = dfx.compile_form(q_form)
+        self.ksp = PETSc.KSP().create(comm)
+        self.ksp.setOptionsPrefix(prefix)
+        opts = PETSc.Options()
+        defaults = {"ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}
+        for key, value in {**defaults, **petsc_options}.items():
+            opts[prefix + key] = value
+        self.ksp.setOperators(problem.A)
+        self.ksp.setFromOptions()
+        b = problem.b
+        self.R, self.q, self.t, self.du_R = b.duplicate(), b.duplicate(), b.duplicate(), b.duplicate()
+
+    def assemble(self, x):
+        """R(x), K(x) and q(x) at the current load factor; returns |R|."""
+        p = self.problem
+        p.residual(None, x, self.R)
+        p.jacobian(None, x, p.A, p.A)
+        with self.timers("volume assembly"):
+            with self.q.localForm() as ql:
+                ql.set(0.0)
+            dfx.assemble_vector_into(self.q, self.q_form)
+            dfx.zero_bc_rows(self.q, self.bcs)
+        return self.R.norm()
+
+    def tangent_direction(self):
+        """t = −K⁻¹ q (the change of u per unit λ along the equilibrium path)."""
+        self.ksp.setOperators(self.problem.A)
+        with self.timers("linear solve"):
+            self.ksp.solve(self.q, self.t)
+        self.t.scale(-1.0)
+        self._check(self.t)
+        return self.t
+
+    def newton_correction(self):
+        """δu_R = −K⁻¹ R (same factorisation as the tangent direction)."""
+        with self.timers("linear solve"):
+            self.ksp.solve(self.R, self.du_R)
+        self.du_R.scale(-1.0)
+        self._check(self.du_R)
+        return self.du_R
+
+    def _check(self, v):
+        reason = self.ksp.getConvergedReason()
+        if reason < 0 or not np.isfinite(v.norm()):
+            raise ContinuationFailure(f"linear solve failed (KSP reason {reason})")
+
+
+class ArcLengthConstraint:
+    """|Δu|² = Δl² (cylindrical arc length)."""
+
+    name = "arc length"
+
+    def __init__(self, size):
+        self.size = size
+
+    def predictor(self, t, du_prev):
+        direction = 1.0 if du_prev is None or t.dot(du_prev) >= 0 else -1.0
+        return direction * self.size / t.norm()
+
+    def correction(self, Du, du_R, t, Du_old):
+        """δλ solving |Du + du_R + δλ t|² = Δl², the root that keeps the
+        increment closest in direction to the one before this iteration."""
+        w = Du.duplicate()
+        Du.copy(w)
+        w.axpy(1.0, du_R)
+        a, b, c = t.dot(t), 2.0 * t.dot(w), w.dot(w) - self.size**2
+        disc = b * b - 4 * a * c
+        if disc < 0:
+            raise ContinuationFailure("arc-length constraint has no real root")
+        roots = [(-b + s * np.sqrt(disc)) / (2 * a) for s in (1.0, -1.0)]
+        scores = [w.dot(Du_old) + r * t.dot(Du_old) for r in roots]
+        return roots[int(np.argmax(scores))]
+
+    def scale(self, factor):
+        self.size *= factor
+
+
+class DisplacementConstraint:
+    """e·Δu = Δs for one controlled dof (owned by one rank)."""
+
+    name = "displacement control"
+
+    def __init__(self, dof, owner, comm, size):
+        self.dof, self.owner, self.comm, self.size = dof, owner, comm, size
+
+    def _component(self, v):
+        local = v.array_r[self.dof] if self.comm.rank == self.owner else 0.0
+        return self.comm.allreduce(local)
+
+    def predictor(self, t, du_prev):
+        et = self._component(t)
+        if et == 0.0:
+            raise ContinuationFailure("the controlled displacement does not respond to the load")
+        return self.size / et
+
+    def correction(self, Du, du_R, t, Du_old):
+        return (self.size - self._component(Du) - self._component(du_R)) / self._component(t)
+
+    def scale(self, factor):
+        self.size *= factor
+
+
+def step(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it):
+    """One continuation step from the converged (x, λ). On success returns
+    (Δu, Δλ, iterations, residual norms) and leaves x, λ updated by the caller;
+    raises ContinuationFailure otherwise (x is then unchanged)."""
+    x0 = x.copy()
+    try:
+        return _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it)
+    except ContinuationFailure:
+        x0.copy(x)
+        set_load_factor(lam)
+        raise
+
+
+def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it):
+    set_load_factor(lam)
+    bordered.assemble(x0)
+    t = bordered.tangent_direction()
+    dlam = constraint.predictor(t, du_prev)
+    Du = t.copy()
+    Du.scale(dlam)
+    norms = []
+    for it in range(max_it + 1):
+        x0.copy(x)
+        x.axpy(1.0, Du)
+        set_load_factor(lam + dlam)
+        rnorm = bordered.assemble(x)
+        if not np.isfinite(rnorm):
+            raise ContinuationFailure(f"residual is not finite at iteration {it}")
+        norms.append(rnorm)
+        qnorm = bordered.q.norm() * max(abs(lam + dlam), 1e-300)
+        if it > 0 and rnorm <= max(rtol * max(norms[0], qnorm), atol):
+            return Du, dlam, it, norms
+        if it == max_it:
+            break
+        t = bordered.tangent_direction()
+        du_R = bordered.newton_correction()
+        Du_old = Du.copy()
+        ddlam = constraint.correction(Du, du_R, t, Du_old)
+        Du.axpy(1.0, du_R)
+        Du.axpy(ddlam, t)
+        dlam += ddlam
+    raise ContinuationFailure(f"no convergence in {max_it} iterations (|R| = {norms[-1]:.3e})")
