@@ -332,10 +332,13 @@ class Simulation:
                 cuts += 1
                 constraint.scale(0.5)
                 self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
-                if cuts > st["max_cutbacks"] or abs(constraint.size) < st["min"] * abs(size0):
+                too_small = abs(constraint.size) < st["min"] * abs(size0)
+                if cuts > st["max_cutbacks"] or too_small:
+                    why = ("its size fell below steps.min × the first step's" if too_small
+                           else f"after {cuts - 1} cut-backs")
                     raise StepFailure(
-                        f"{constraint.name} step from λ = {lam:.6g} did not converge after {cuts - 1} "
-                        f"cut-backs ({err}); {len(writer.steps)} converged step(s) are in {out_dir}") from None
+                        f"{constraint.name} step from λ = {lam:.6g} did not converge, {why} ({err}); "
+                        f"{len(writer.steps)} converged step(s) are in {out_dir}") from None
                 continue
             cuts = 0
             lam += dlam
