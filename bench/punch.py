@@ -40,6 +40,9 @@ def run(n, m, out, extra):
 
 
 def main():
+    import logging
+
+    logging.getLogger().setLevel(logging.WARNING)
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--meshes", nargs="+", default=["16x4", "32x8"], help="N x M of the quarter mesh")
     p.add_argument("--out", default=str(ROOT / "bench" / "results" / "punch"))

@@ -13,5 +13,5 @@ def follower_pressure(u, v, p, ds):
     """Residual term of a follower pressure p (scalar or UFL expression) on ds."""
     dim = len(u)
     F = ufl.Identity(dim) + ufl.grad(u)
-    N = ufl.FacetNormal(u.function_space.mesh)
+    N = ufl.FacetNormal(ds.ufl_domain())
     return p * ufl.det(F) * ufl.dot(ufl.inv(F).T * N, v) * ds

@@ -9,6 +9,8 @@ J^(-2/3) is so high that a small hexahedral mesh would take minutes per
 Newton step (see DESIGN.md). Degree 2 on trilinear hexahedra is the 2×2×2
 Gauss rule.
 """
+import math
+
 import ufl
 
 
@@ -42,3 +44,25 @@ def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree):
     dx_one = ufl.dx(metadata={"quadrature_degree": 1})
     return _variational_forms(
         u, lambda F: psi_iso(F, **params) * dx_full + 0.5 * K * (ufl.det(F) - 1.0) ** 2 * dx_one)
+
+
+def mixed_up_forms(w, psi_iso, params, K, quadrature_degree):
+    """Mixed displacement–pressure formulation (perturbed Lagrangian) on a
+    stable pair, Taylor–Hood Q2–Q1: w = (u, p),
+
+        Π(u, p) = ∫ ψ_iso(F) + p (J − 1) − p²/(2K) dV.
+
+    Eliminating p (p = K (J − 1)) gives back ψ_iso + K/2 (J − 1)², the
+    penalty law; K = inf gives the incompressible limit J = 1 with p its
+    Lagrange multiplier. The tangent is a saddle-point matrix (a direct
+    solver handles it).
+    """
+    W = w.function_space
+    u, p = ufl.split(w)
+    F = ufl.variable(ufl.Identity(len(u)) + ufl.grad(u))
+    J = ufl.det(F)
+    compliance = 0.0 if math.isinf(K) else 1.0 / K
+    dx = ufl.dx(metadata={"quadrature_degree": int(quadrature_degree)})
+    energy = (psi_iso(F, **params) + p * (J - 1.0) - 0.5 * compliance * p**2) * dx
+    R = ufl.derivative(energy, w, ufl.TestFunction(W))
+    return R, ufl.derivative(R, w, ufl.TrialFunction(W))

@@ -24,6 +24,19 @@ def vector_space(mesh, degree):
     return fem.VectorFunctionSpace(mesh, ("Lagrange", int(degree)))
 
 
+def taylor_hood_space(mesh):
+    """(Q2)³ × Q1: displacement and pressure, a stable pair."""
+    cell = mesh.ufl_cell()
+    element = ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 2), ufl.FiniteElement("Lagrange", cell, 1)])
+    return fem.FunctionSpace(mesh, element)
+
+
+def collapse(subspace):
+    """(collapsed space, its local unrolled dofs' indices in the parent)."""
+    space, parent_dofs = subspace.collapse()
+    return space, np.asarray(parent_dofs, dtype=np.int32)
+
+
 def scalar_space(mesh, degree):
     return fem.FunctionSpace(mesh, ("Lagrange", int(degree)))
 
@@ -61,6 +74,11 @@ def dirichlet_component(V, component, facets):
 def bc_dofs(bc):
     """Process-local unrolled dof indices constrained by a DirichletBC."""
     return bc.dof_indices()[0]
+
+
+def num_global_dofs(V):
+    im = V.dofmap.index_map
+    return im.size_global * V.dofmap.index_map_bs
 
 
 def num_owned_nodes(V):

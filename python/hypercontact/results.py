@@ -35,10 +35,17 @@ class ResultsWriter:
             self.out.mkdir(parents=True, exist_ok=True)
         comm.barrier()
         V = u.function_space
-        self.Q, self.q_to_v = V.sub(0).collapse()
-        self.q_nodes = np.asarray(self.q_to_v) // 3
-        self.gap = dfx.fem.Function(self.Q, name="contact_gap")
-        self.pressure = dfx.fem.Function(self.Q, name="contact_pressure")
+        # XDMF holds first-order fields on the (first-order) mesh: a degree-2
+        # displacement is written interpolated at the vertices.
+        if V.ufl_element().degree() == 1:
+            self.u_out = u
+        else:
+            self.u_out = dfx.fem.Function(dfx.vector_space(V.mesh, 1), name="displacement")
+        if contacts:
+            self.Q, q_to_v = V.sub(0).collapse()
+            self.q_nodes = np.asarray(q_to_v) // 3
+            self.gap = dfx.fem.Function(self.Q, name="contact_gap")
+            self.pressure = dfx.fem.Function(self.Q, name="contact_pressure")
         self.xdmf = (dfx.XDMFWriter(comm, self.out / "fields.xdmf", V.mesh)
                      if scene["output"]["xdmf"] else None)
         self.columns = ["step", "load_factor", "newton_iterations"]
@@ -81,6 +88,11 @@ class ResultsWriter:
         return row
 
     def _write_fields(self, t):
+        if self.u_out is not self.u:
+            self.u_out.interpolate(self.u)
+        if not self.contacts:
+            self.xdmf.write([self.u_out], t)
+            return
         n_local = dfx.num_local_nodes(self.u.function_space)
         gap, pressure = np.zeros(n_local), np.zeros(n_local)
         for c in self.contacts:
@@ -91,7 +103,7 @@ class ResultsWriter:
         self.pressure.x.array[:] = pressure[self.q_nodes]
         dfx.update_ghosts(self.gap)
         dfx.update_ghosts(self.pressure)
-        self.xdmf.write([self.u, self.gap, self.pressure], t)
+        self.xdmf.write([self.u_out, self.gap, self.pressure], t)
 
     def finish(self, status, message, timers):
         self.status, self.message = status, message

@@ -77,8 +77,9 @@ SCHEMA = {
     "discretisation": {
         "degree": Key("integer", 1, (lambda x: x in (1, 2), "1 or 2")),
         "quadrature_degree": Key("integer", 2, POSITIVE),
-        "formulation": Key("string", "displacement", (lambda x: x in ("displacement", "sri"),
-                                                      '"displacement" or "sri" (selective reduced integration)')),
+        "formulation": Key("string", "displacement", (lambda x: x in ("displacement", "sri", "mixed"),
+                                                      '"displacement", "sri" (selective reduced integration) '
+                                                      'or "mixed" (Taylor–Hood u–p)')),
     },
     "pressure": [{
         "surface": Key("string", REQUIRED),

@@ -123,21 +123,41 @@ class Simulation:
         else:
             body = geometry.build_box(self.comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
         self.body = body
-        self.V = dfx.vector_space(body.mesh, sc["discretisation"]["degree"])
-        self.u = dfx.fem.Function(self.V, name="displacement")
         psi, params, mat_desc = resolve_material(sc["material"], law)
         disc = sc["discretisation"]
-        if disc["formulation"] == "sri":
-            name = sc["material"]["law"]
-            if law is not None or name not in materials.ISOCHORIC:
-                raise SceneError("scene key 'discretisation.formulation': selective reduced integration "
-                                 f"needs a built-in law ({', '.join(materials.ISOCHORIC)}), found {name!r}")
-            iso_params = {k: v for k, v in params.items() if k != "K"}
-            R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"],
-                                                  disc["quadrature_degree"])
-            mat_desc += ", selective reduced integration"
+        name = sc["material"]["law"]
+        if disc["formulation"] != "displacement" and (law is not None or name not in materials.ISOCHORIC):
+            raise SceneError(f"scene key 'discretisation.formulation': {disc['formulation']!r} needs a built-in "
+                             f"law ({', '.join(materials.ISOCHORIC)}), found {name!r}")
+        if np.isinf(params.get("K", 0.0)) and disc["formulation"] != "mixed":
+            raise SceneError("scene key 'material.parameters.K': K = inf (incompressible) needs "
+                             "discretisation.formulation = \"mixed\"")
+        iso_params = {k: v for k, v in params.items() if k != "K"}
+        if disc["formulation"] == "mixed":
+            if disc["quadrature_degree"] < 4:
+                raise SceneError("scene key 'discretisation.quadrature_degree': the mixed formulation's "
+                                 "quadratic hexahedra need 3×3×3 Gauss points (degree >= 4), found "
+                                 f"{disc['quadrature_degree']}: fewer leave zero-energy modes")
+            # The unknown is w = (u, p); self.u is its displacement part, refreshed after each solve.
+            self.w = dfx.fem.Function(dfx.taylor_hood_space(body.mesh), name="solution")
+            self.V, self._u_dofs = dfx.collapse(self.w.function_space.sub(0))
+            self.u = dfx.fem.Function(self.V, name="displacement")
+            u_unknown, v_unknown = ufl.split(self.w)[0], ufl.split(ufl.TestFunction(self.w.function_space))[0]
+            R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, params["K"],
+                                         disc["quadrature_degree"])
+            mat_desc += ", mixed u–p (Taylor–Hood Q2–Q1)"
         else:
-            R, J = volume.displacement_forms(self.u, psi, params, disc["quadrature_degree"])
+            self.V = dfx.vector_space(body.mesh, disc["degree"])
+            self.u = self.w = dfx.fem.Function(self.V, name="displacement")
+            self._u_dofs = None
+            u_unknown, v_unknown = self.u, ufl.TestFunction(self.V)
+            if disc["formulation"] == "sri":
+                R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"],
+                                                      disc["quadrature_degree"])
+                mat_desc += ", selective reduced integration"
+            else:
+                R, J = volume.displacement_forms(self.u, psi, params, disc["quadrature_degree"])
+        W = self.w.function_space
 
         def tag_of(surface, key):
             if surface not in body.surfaces:
@@ -148,36 +168,37 @@ class Simulation:
         self.bcs = []
         for i, bc in enumerate(sc["bc"]):
             facets = dfx.facets_with_tag(body.facet_tags, tag_of(bc["surface"], f"bc[{i}].surface"))
-            self.bcs += [dfx.dirichlet_component(self.V, AXIS[a], facets) for a in bc["fix"]]
-        constrained = np.zeros(self.u.x.array.size, dtype=bool)
+            displacement_space = W.sub(0) if self._u_dofs is not None else W
+            self.bcs += [dfx.dirichlet_component(displacement_space, AXIS[a], facets) for a in bc["fix"]]
+        constrained = np.zeros(self.w.x.array.size, dtype=bool)
         for bc in self.bcs:
             constrained[dfx.bc_dofs(bc)] = True
 
         # Follower pressures p = λ × value: residual terms, and q = ∂R/∂λ for continuation.
         self.load_factor = dfx.constant(body.mesh, 0.0)
         self.q_form = None
-        v, du = ufl.TestFunction(self.V), ufl.TrialFunction(self.V)
         ds = dfx.facet_integration_measure(body.mesh, body.facet_tags, disc["quadrature_degree"])
         for i, pr in enumerate(sc["pressure"]):
-            term = loads.follower_pressure(self.u, v, pr["value"], ds(tag_of(pr["surface"], f"pressure[{i}].surface")))
+            surface = ds(tag_of(pr["surface"], f"pressure[{i}].surface"))
+            term = loads.follower_pressure(u_unknown, v_unknown, pr["value"], surface)
             self.q_form = term if self.q_form is None else self.q_form + term
         if self.q_form is not None:
             R = R + self.load_factor * self.q_form
-            J = J + self.load_factor * ufl.derivative(self.q_form, self.u, du)
+            J = J + self.load_factor * ufl.derivative(self.q_form, self.w, ufl.TrialFunction(W))
 
         self.contacts = []
         for i, c in enumerate(sc["contact"]):
             tag = tag_of(c["surface"], f"contact[{i}].surface")
-            if sc["discretisation"]["degree"] != 1:
-                raise SceneError(f"scene key 'discretisation.degree': contact needs degree 1 (found "
-                                 f"{sc['discretisation']['degree']})")
+            if sc["discretisation"]["degree"] != 1 or self._u_dofs is not None:
+                raise SceneError("scene key 'discretisation': contact needs the displacement or sri "
+                                 "formulation with degree 1")
             self.contacts.append(RigidContact(c, self.V, body.facet_tags, tag, constrained))
 
         size = np.ptp(body.mesh.geometry.x, axis=0).max()
         size = self.comm.allreduce(size, op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size)
                        for name, p in sc["output"]["probes"].items()}
-        self.problem = Problem(self.u, R, J, self.bcs, self.contacts, self.timers)
+        self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
         self.snes = make_snes(self.problem, self.comm, sc["solver"])
         self.snes.setConvergenceHistory(length=sc["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
@@ -200,6 +221,16 @@ class Simulation:
             self.update_norms.append(snes.getSolutionUpdate().norm())
         self.active_sets.append([c.active_set_signature() for c in self.contacts])
 
+    def sync_displacement(self):
+        """self.u from the unknown (a no-op unless the formulation is mixed)."""
+        if self._u_dofs is not None:
+            self.u.x.array[:] = self.w.x.array[self._u_dofs]
+
+    def unknown_dof(self, node, axis):
+        """Process-local index in the unknown vector of u_axis at a node of V."""
+        dof = 3 * node + axis
+        return int(self._u_dofs[dof]) if self._u_dofs is not None else dof
+
     def set_load_factor(self, lam):
         self.load_factor.value = lam
         for c in self.contacts:
@@ -208,14 +239,15 @@ class Simulation:
     def solve_step(self):
         """One Newton solve at the current load factor: (converged, its, norms, reason)."""
         x = self.problem.x
-        self.u.vector.copy(x)
+        self.w.vector.copy(x)
         self.snes.solve(None, x)
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
         converged = reason > 0 and np.all(np.isfinite(x.array))
         if converged:
-            x.copy(self.u.vector)
-            dfx.update_ghosts(self.u)
+            x.copy(self.w.vector)
+            dfx.update_ghosts(self.w)
+            self.sync_displacement()
         return converged, self.snes.getIterationNumber(), norms, converged_reason_name(reason)
 
     def last_active_set_change(self):
@@ -236,7 +268,7 @@ class Simulation:
         t0 = {name: e.getPerfInfo()["time"] for name, e in events.items()}
         writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes)
         self.log(f"hypercontact: {', '.join(self.effects)}; "
-                 f"{self.V.dofmap.index_map.size_global * 3} unknowns on {self.comm.size} rank(s)")
+                 f"{dfx.num_global_dofs(self.w.function_space)} unknowns on {self.comm.size} rank(s)")
 
         def split():
             """Linear solve = SNES time less residual and Jacobian evaluation
@@ -266,7 +298,7 @@ class Simulation:
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
         lam, dlam, cuts = 0.0, st["initial"], 0
-        u_saved = self.u.x.array.copy()
+        u_saved = self.w.x.array.copy()
 
         while lam < 1.0 - 1e-12:
             dlam = min(dlam, 1.0 - lam)
@@ -276,7 +308,7 @@ class Simulation:
                 lam += dlam
                 self._lam = lam
                 cuts = 0
-                u_saved[:] = self.u.x.array
+                u_saved[:] = self.w.x.array
                 with self.timers("output"):
                     row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
                                             self.update_norms)
@@ -285,7 +317,7 @@ class Simulation:
                 if its <= st["grow_below"]:
                     dlam = min(dlam * st["growth"], st["max"])
                 continue
-            self.u.x.array[:] = u_saved
+            self.w.x.array[:] = u_saved
             cuts += 1
             dlam *= 0.5
             self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "
@@ -302,7 +334,7 @@ class Simulation:
         st, sv = self.scene["steps"], self.scene["solver"]
         bordered = Bordered(self.problem, self.q_form, self.bcs, self.comm, sv["petsc"], timers=self.timers)
         x = self.problem.x
-        self.u.vector.copy(x)
+        self.w.vector.copy(x)
         probe = self.probes[st["stop_probe"]]
         axis = AXIS[st["stop_component"]]
         target = st["stop_value"]
@@ -312,7 +344,7 @@ class Simulation:
             size = st["initial"] * bordered.tangent_direction().norm()
             constraint = ArcLengthConstraint(size)
         else:
-            owner_dof = 3 * probe.node + axis if self.comm.rank == probe.owner else -1
+            owner_dof = self.unknown_dof(probe.node, axis) if self.comm.rank == probe.owner else -1
             constraint = DisplacementConstraint(owner_dof, probe.owner, self.comm, st["initial"] * target)
         size0 = constraint.size
         lam, du_prev, cuts, last_dlam = 0.0, None, 0, None
@@ -327,8 +359,9 @@ class Simulation:
                     bordered, constraint, x, lam, du_prev, self.set_load_factor,
                     sv["rtol"], sv["atol"], sv["max_it"])
             except ContinuationFailure as err:
-                x.copy(self.u.vector)  # the failed iterates passed through u
-                dfx.update_ghosts(self.u)
+                x.copy(self.w.vector)  # the failed iterates passed through the unknown
+                dfx.update_ghosts(self.w)
+                self.sync_displacement()
                 cuts += 1
                 constraint.scale(0.5)
                 self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
@@ -343,8 +376,9 @@ class Simulation:
             cuts = 0
             lam += dlam
             self._lam, du_prev = lam, Du
-            x.copy(self.u.vector)
-            dfx.update_ghosts(self.u)
+            x.copy(self.w.vector)
+            dfx.update_ghosts(self.w)
+            self.sync_displacement()
             if last_dlam is not None and dlam * last_dlam < 0:
                 writer.limit_points.append({"after_step": len(writer.steps), "load_factor": lam - dlam})
                 self.log(f"   limit point: the load factor turned at λ ≈ {lam - dlam:.6g}")
