@@ -48,7 +48,7 @@ def vertex(u, p):
     return -b / (2 * a), c - b * b / (4 * a)
 
 
-def figure(out):
+def figure(out, i2="usual"):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -56,9 +56,11 @@ def figure(out):
 
     fig, ax = plt.subplots(figsize=(7, 5))
     rows = []
+    suffix = "" if i2 == "usual" else f"_{i2}"
     for K, color in [(1.0, "tab:blue"), (5.0, "tab:orange"), (200.0, "tab:green")]:
-        params = dict(PAPER, K=K, i2="usual")
-        u, p, wall, summary = run(out / f"K{K:g}", [f"material.parameters.K={K}", "steps.max=0.15"])
+        params = dict(PAPER, K=K, i2=i2)
+        u, p, wall, summary = run(out / f"K{K:g}_{i2}", [f"material.parameters.K={K}", f"material.parameters.i2={i2}",
+                                                         "steps.max=0.15"])
         uu = np.linspace(0.0, u.max(), 200)
         ax.plot(uu, 1e3 * pressure_curve("mooney_rivlin", params, uu), "-", color=color, lw=1,
                 label=f"K = {K:g}: 1D oracle")
@@ -68,20 +70,20 @@ def figure(out):
         err = np.max(np.abs(p / pressure_curve("mooney_rivlin", params, u) - 1))
         rows.append(dict(K=K, u_ref=u_ref, p_ref=p_ref, u_fe=u_max, p_fe=p_max, curve_error=err,
                          steps=len(u), newton=int(sum(summary["newton_iterations"])), wall=wall))
-        np.savetxt(out / f"curve_K{K:g}.csv", np.c_[u, p], delimiter=",", header="u_inner_mm,p_MPa", comments="")
+        np.savetxt(out / f"curve_K{K:g}{suffix}.csv", np.c_[u, p], delimiter=",", header="u_inner_mm,p_MPa", comments="")
     ax.set_xlabel("radial displacement of the inner surface (mm)")
     ax.set_ylabel("internal pressure (kPa)")
-    ax.set_title("Inflated Mooney sphere (α1 = 0.1863, α2 = 0.0098), usual I2")
+    ax.set_title(f"Inflated Mooney sphere (α1 = 0.1863, α2 = 0.0098), {i2} I2")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(out / "sphere_fig2.png", dpi=120)
+    fig.savefig(out / f"sphere_fig2{suffix}.png", dpi=120)
     lines = ["| K | oracle u_max (mm) | FE u_max | oracle p_max (kPa) | FE p_max | max curve error | steps | Newton its | wall (s) |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['K']:g} | {r['u_ref']:.3f} | {r['u_fe']:.3f} | {1e3 * r['p_ref']:.4f} | "
                      f"{1e3 * r['p_fe']:.4f} | {100 * r['curve_error']:.2f} % | {r['steps']} | {r['newton']} | {r['wall']:.0f} |")
-    (out / "sphere_fig2.md").write_text("\n".join(lines) + "\n")
+    (out / f"sphere_fig2{suffix}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines), flush=True)
 
 
@@ -142,12 +144,13 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--figure", action="store_true")
     p.add_argument("--study", action="store_true")
+    p.add_argument("--i2", choices=["usual", "paper"], default="usual", help="definition of I2 for --figure")
     p.add_argument("--out", default=str(ROOT / "bench" / "results" / "sphere"))
     args = p.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     if args.figure or not args.study:
-        figure(out)
+        figure(out, args.i2)
     if args.study or not args.figure:
         study(out)
 
