@@ -172,9 +172,10 @@ def interpolate_constant_vector(u, value):
 class XDMFWriter:
     """Time series of functions on one mesh, readable by ParaView."""
 
-    def __init__(self, comm, path, mesh):
-        self._file = dolfinx.io.XDMFFile(comm, str(path), "w")
-        self._file.write_mesh(mesh)
+    def __init__(self, comm, path, mesh, append=False):
+        self._file = dolfinx.io.XDMFFile(comm, str(path), "a" if append else "w")
+        if not append:
+            self._file.write_mesh(mesh)
 
     def write(self, functions, t):
         for f in functions:

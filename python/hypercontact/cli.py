@@ -1,64 +1,122 @@
-"""Command line: ``hypercontact run SCENE [--out DIR] [--set key=value ...]``.
+"""Command line of hypercontact.
+
+    hypercontact run SCENE [--out DIR] [--set KEY=VALUE ...] [--np N] [--resume]
+    hypercontact check SCENE [--set KEY=VALUE ...]
+    hypercontact scenes
 
 Exit codes: 0 completed, 2 invalid scene, 3 a load step failed (converged
-steps are on disk), 130 interrupted (Ctrl-C; converged steps are on disk).
+steps are on disk), 130 interrupted (Ctrl-C; converged steps are on disk,
+and ``--resume`` continues from the last of them).
 """
 import argparse
+import os
+import shutil
+import signal
 import sys
+import tomllib
+from pathlib import Path
 
 from . import scene as scene_mod
 
+#: The built-in scenes (the repository's scenes/ folder).
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
 
 def _parser():
-    p = argparse.ArgumentParser(prog="hypercontact", description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(prog="hypercontact", description="Hyperelastic bodies in contact.")
     sub = p.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scene")
     check = sub.add_parser("check", help="validate a scene without running it")
+    sub.add_parser("scenes", help="list the built-in scenes")
     for q in (run, check):
-        q.add_argument("scene", help="scene file (TOML)")
+        q.add_argument("scene", help="scene file (TOML), or the name of a built-in scene")
         q.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                        help="override a scene value, e.g. --set mesh.n=32 (repeatable)")
     run.add_argument("--out", help="results folder (default: the scene's output.dir)")
+    run.add_argument("--np", type=int, default=0, metavar="N", help="run on N MPI processes (mpirun)")
+    run.add_argument("--resume", action="store_true",
+                     help="continue from the last converged step checkpointed in the results folder")
     return p
 
 
+def _scene_path(name):
+    path = Path(name)
+    if not path.exists() and (SCENES / f"{name}.toml").is_file():
+        return SCENES / f"{name}.toml"
+    return path
+
+
+def list_scenes(out=sys.stdout):
+    for path in sorted(SCENES.glob("*.toml")):
+        try:
+            title = tomllib.loads(path.read_text()).get("title", "")
+        except tomllib.TOMLDecodeError:
+            title = "(not valid TOML)"
+        print(f"{path.stem:24s} {title}", file=out)
+
+
+def _under_mpirun(argv, n):
+    """Re-run this command under ``mpirun -n N`` (never returns)."""
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        raise SystemExit("hypercontact: --np needs mpirun (Debian package openmpi-bin)")
+    args, skip = [], False
+    for a in argv:
+        if skip:
+            skip = False
+        elif a == "--np":
+            skip = True
+        elif not a.startswith("--np="):
+            args.append(a)
+    cmd = [mpirun, "-n", str(n), "--oversubscribe"]
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    cmd += [sys.executable, "-m", "hypercontact.cli", *args]
+    os.execv(mpirun, cmd)
+
+
 def main(argv=None):
+    argv = list(sys.argv[1:] if argv is None else argv)
     args = _parser().parse_args(argv)
+    if args.command == "scenes":
+        list_scenes()
+        return 0
+    launched = any(v in os.environ for v in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"))
+    if args.command == "run" and args.np > 1 and not launched:
+        _under_mpirun(argv, args.np)  # before MPI is initialised here: a singleton cannot exec mpirun
     import logging
 
     logging.getLogger().setLevel(logging.WARNING)  # FFCx's JIT logs every compilation at INFO
     from mpi4py import MPI
 
     comm = MPI.COMM_WORLD
-    err = sys.stderr if comm.rank == 0 else open("/dev/null", "w")
+    err = sys.stderr if comm.rank == 0 else open(os.devnull, "w")
     try:
-        sc = scene_mod.load(args.scene, args.overrides)
+        sc = scene_mod.load(_scene_path(args.scene), args.overrides)
         if args.command == "check":
             if comm.rank == 0:
                 print(f"{args.scene}: valid")
             return 0
         from .simulation import Simulation, StepFailure
 
+        # MPI and PETSc install their own SIGINT handlers; Ctrl-C must reach
+        # Python as KeyboardInterrupt so the run stops cleanly.
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         sim = Simulation(sc, comm)
         try:
-            writer = sim.run(args.out)
+            writer = sim.run(args.out, resume=args.resume)
         except StepFailure as failure:
             print(f"hypercontact: {failure}", file=err)
             return 3
         except KeyboardInterrupt:
-            print("hypercontact: interrupted; converged steps are on disk", file=err)
+            print("hypercontact: interrupted; converged steps are on disk (--resume continues)", file=err)
             return 130
         if comm.rank == 0:
             print(f"hypercontact: completed {len(writer.steps)} steps; results in {writer.out}")
         return 0
-    except scene_mod.SceneError as e:
-        print(f"hypercontact: invalid scene: {e}", file=err)
-        return 2
-    except FileNotFoundError as e:
-        print(f"hypercontact: {e}", file=err)
-        return 2
-    except ValueError as e:
-        print(f"hypercontact: {e}", file=err)
+    except (scene_mod.SceneError, FileNotFoundError, ValueError) as e:
+        prefix = "invalid scene: " if isinstance(e, scene_mod.SceneError) else ""
+        print(f"hypercontact: {prefix}{e}", file=err)
         return 2
 
 

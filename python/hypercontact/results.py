@@ -21,13 +21,15 @@ from . import _dolfinx as dfx
 
 
 class ResultsWriter:
-    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes):
+    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes, previous=None):
+        """``previous``: the checkpointed state of an interrupted run being
+        resumed: its steps are kept, the CSV rewritten, the XDMF appended."""
         self.comm, self.scene, self.effects = comm, scene, effects
         self.u, self.contacts, self.probes = u, contacts, probes
         self.out = Path(out_dir)
         self.factor = scene["output"]["symmetry_factor"]
-        self.steps = []
-        self.limit_points = []
+        self.steps = list(previous["steps"]) if previous else []
+        self.limit_points = list(previous["limit_points"]) if previous else []
         self.status, self.message = "running", ""
         self.started = time.perf_counter()
         self.rank0 = comm.rank == 0
@@ -46,7 +48,14 @@ class ResultsWriter:
             self.q_nodes = np.asarray(q_to_v) // 3
             self.gap = dfx.fem.Function(self.Q, name="contact_gap")
             self.pressure = dfx.fem.Function(self.Q, name="contact_pressure")
-        self.xdmf = (dfx.XDMFWriter(comm, self.out / "fields.xdmf", V.mesh)
+        append = previous is not None and (self.out / "fields.xdmf").is_file()
+        # A run killed after writing a step's fields but before its checkpoint
+        # recomputes that step on resume, identically: its fields are on disk.
+        self._frames_on_disk = 0
+        if append:
+            frames = (self.out / "fields.xdmf").read_text().count('<Grid Name="displacement" GridType="Uniform"')
+            self._frames_on_disk = max(frames - len(self.steps), 0)
+        self.xdmf = (dfx.XDMFWriter(comm, self.out / "fields.xdmf", V.mesh, append=append)
                      if scene["output"]["xdmf"] else None)
         self.columns = ["step", "load_factor", "newton_iterations"]
         for c in contacts:
@@ -60,6 +69,8 @@ class ResultsWriter:
             self._csv_file = open(self.out / "curves.csv", "w", newline="")
             self._csv = csv.writer(self._csv_file)
             self._csv.writerow(self.columns)
+            for step in self.steps:
+                self._csv.writerow([step[k] for k in self.columns])
             self._csv_file.flush()
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=()):
@@ -88,6 +99,9 @@ class ResultsWriter:
         return row
 
     def _write_fields(self, t):
+        if self._frames_on_disk > 0:
+            self._frames_on_disk -= 1
+            return
         if self.u_out is not self.u:
             self.u_out.interpolate(self.u)
         if not self.contacts:

@@ -1,7 +1,7 @@
 """A scene → a running simulation: build only the effects the scene names,
 then solve by incremental loading with automatic step control."""
 import importlib.util
-import inspect
+import time
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +11,7 @@ from petsc4py import PETSc
 
 from . import _dolfinx as dfx
 from . import geometry
+from .checkpoint import Checkpoint
 from .contact import RigidContact
 from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
 from .continuation import step as continuation_step
@@ -221,6 +222,21 @@ class Simulation:
             self.update_norms.append(snes.getSolutionUpdate().norm())
         self.active_sets.append([c.active_set_signature() for c in self.contacts])
 
+    def _eta(self, progress):
+        """'  ~N s left', extrapolating the time since this run (or resume)
+        started over the fraction of the load path still to go."""
+        if not 0 < progress < 1:
+            return ""
+        elapsed = time.perf_counter() - self._started
+        done = progress - self._progress0
+        return f"  ~{elapsed * (1 - progress) / done:.0f} s left" if done > 0 else ""
+
+    def _save_checkpoint(self, writer, controller, **arrays):
+        """The state after a converged step: solution, step controller, results so far."""
+        with self.timers("output"):
+            state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points}
+            self.checkpoint.save(state, w=self.w.x.array, **arrays)
+
     def sync_displacement(self):
         """self.u from the unknown (a no-op unless the formulation is mixed)."""
         if self._u_dofs is not None:
@@ -258,15 +274,22 @@ class Simulation:
             k -= 1
         return k
 
-    def run(self, out_dir=None):
-        """Incremental loading λ: 0 → 1. Returns the results writer; raises
-        :class:`StepFailure` after writing everything that converged."""
+    def run(self, out_dir=None, resume=False):
+        """Solve the scene's load path. Returns the results writer; raises
+        :class:`StepFailure` after writing everything that converged. With
+        ``resume``, continue from the checkpoint in the results folder."""
         st = self.scene["steps"]
         out_dir = out_dir or self.scene["output"]["dir"]
+        self.checkpoint = Checkpoint(Path(out_dir) / "checkpoint", self.comm)
+        state, arrays = self.checkpoint.load() if resume else (None, {})
+        if state is not None:
+            self.w.x.array[:] = arrays["w"]
+            self.sync_displacement()
         PETSc.Log.begin()
         events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         t0 = {name: e.getPerfInfo()["time"] for name, e in events.items()}
-        writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes)
+        writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes,
+                               previous=state)
         self.log(f"hypercontact: {', '.join(self.effects)}; "
                  f"{dfx.num_global_dofs(self.w.function_space)} unknowns on {self.comm.size} rank(s)")
 
@@ -280,12 +303,18 @@ class Simulation:
                     t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"], 0.0)
             return self.timers
 
-        self._lam = 0.0
+        self._lam = state["lam"] if state is not None else 0.0
+        self._started = time.perf_counter()
+        self._progress0 = 0.0
+        if state is not None and state["steps"]:
+            last = state["steps"][-1]
+            self._progress0 = (last["load_factor"] if st["control"] == "load" else
+                               last[f"{st['stop_probe']}_u{st['stop_component']}"] / st["stop_value"])
         try:
             if st["control"] == "load":
-                self._load_control(writer, split, out_dir)
+                self._load_control(writer, split, out_dir, state)
             else:
-                self._continuation(writer, split, out_dir)
+                self._continuation(writer, split, out_dir, state, arrays)
         except BaseException as err:
             self.set_load_factor(self._lam)
             message = str(err) or type(err).__name__
@@ -294,10 +323,14 @@ class Simulation:
         writer.finish("completed", "", split())
         return writer
 
-    def _load_control(self, writer, split, out_dir):
+    def _load_control(self, writer, split, out_dir, state=None):
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
         lam, dlam, cuts = 0.0, st["initial"], 0
+        if state is not None:
+            lam, dlam = state["lam"], state["dlam"]
+            self._lam = lam
+            self.set_load_factor(lam)
         u_saved = self.w.x.array.copy()
 
         while lam < 1.0 - 1e-12:
@@ -313,9 +346,10 @@ class Simulation:
                     row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
                                             self.update_norms)
                 self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
-                         f"|R| = {norms[-1]:.2e}  ({reason})")
+                         f"|R| = {norms[-1]:.2e}  ({reason}){self._eta(lam)}")
                 if its <= st["grow_below"]:
                     dlam = min(dlam * st["growth"], st["max"])
+                self._save_checkpoint(writer, {"lam": lam, "dlam": dlam})
                 continue
             self.w.x.array[:] = u_saved
             cuts += 1
@@ -328,7 +362,7 @@ class Simulation:
                     f"(last Δλ = {2 * dlam:.3g}, SNES reason {reason}); "
                     f"{len(writer.steps)} converged step(s) are in {out_dir}")
 
-    def _continuation(self, writer, split, out_dir):
+    def _continuation(self, writer, split, out_dir, state=None, arrays=None):
         """Arc-length or displacement control (see continuation.py) until the
         stop probe's displacement component reaches steps.stop_value."""
         st, sv = self.scene["steps"], self.scene["solver"]
@@ -339,15 +373,24 @@ class Simulation:
         axis = AXIS[st["stop_component"]]
         target = st["stop_value"]
         if st["control"] == "arclength":
-            self.set_load_factor(0.0)
-            bordered.assemble(x)
-            size = st["initial"] * bordered.tangent_direction().norm()
+            if state is None:
+                self.set_load_factor(0.0)
+                bordered.assemble(x)
+                size = st["initial"] * bordered.tangent_direction().norm()
+            else:
+                size = state["size0"]
             constraint = ArcLengthConstraint(size)
         else:
             owner_dof = self.unknown_dof(probe.node, axis) if self.comm.rank == probe.owner else -1
             constraint = DisplacementConstraint(owner_dof, probe.owner, self.comm, st["initial"] * target)
         size0 = constraint.size
         lam, du_prev, cuts, last_dlam = 0.0, None, 0, None
+        if state is not None:
+            lam, last_dlam, size0, constraint.size = state["lam"], state["last_dlam"], state["size0"], state["size"]
+            self._lam = lam
+            if "du_prev" in arrays:
+                du_prev = x.duplicate()
+                du_prev.array[:] = arrays["du_prev"]
         while len(writer.steps) < st["max_steps"]:
             reached = probe.value(self.u)[axis]
             if (reached - target) * np.sign(target) >= -1e-12 * abs(target):
@@ -385,12 +428,15 @@ class Simulation:
             last_dlam = dlam
             with self.timers("output"):
                 row = writer.write_step(lam, its, norms, split())
+            reached = probe.value(self.u)[axis]
             self.log(f"step {row['step']:3d}  λ = {lam:.5f}  {st['stop_probe']} u{st['stop_component']} = "
-                     f"{probe.value(self.u)[axis]:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}")
+                     f"{reached:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}{self._eta(reached / target)}")
             factor = float(np.clip(np.sqrt(st["target_iterations"] / max(its, 1)), 0.5, 2.0))
             if st["control"] == "arclength":
                 constraint.size = min(constraint.size * factor, size0 * st["max"] / st["initial"])
             else:
                 constraint.size = np.sign(target) * min(abs(constraint.size) * factor, abs(target) * st["max"])
+            self._save_checkpoint(writer, {"lam": lam, "last_dlam": last_dlam, "size": constraint.size, "size0": size0},
+                                  du_prev=du_prev.array_r)
         raise StepFailure(f"steps.max_steps = {st['max_steps']} reached before {st['stop_probe']} "
                           f"u{st['stop_component']} = {target}; {len(writer.steps)} steps are in {out_dir}")
