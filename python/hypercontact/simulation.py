@@ -259,7 +259,9 @@ class Simulation:
         self.snes.solve(None, x)
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
-        converged = reason > 0 and np.all(np.isfinite(x.array))
+        # every rank must take the same branch: a NaN on one rank fails the step on all
+        finite = self.comm.allreduce(int(np.all(np.isfinite(x.array))), op=MPI.MIN)
+        converged = reason > 0 and bool(finite)
         if converged:
             x.copy(self.w.vector)
             dfx.update_ghosts(self.w)
