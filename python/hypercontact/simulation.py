@@ -113,18 +113,48 @@ class Simulation:
             self._build(law)
 
     def _build(self, law):
+        """Build exactly the effects the scene names, in the order they depend
+        on each other: body, volume forms, constraints, loads, contacts."""
         sc = self.scene
-        mesh = sc["mesh"]
+        self.body = self._build_body(sc["mesh"])
+        R, J, u_unknown, v_unknown, mat_desc = self._build_volume(law)
+        self.bcs, constrained = self._build_constraints()
+        R, J = self._add_pressures(R, J, u_unknown, v_unknown)
+        self.contacts = [RigidContact(c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"),
+                                      constrained) for i, c in enumerate(sc["contact"])]
+        size = self.comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
+        self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in sc["output"]["probes"].items()}
+        self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
+        self.snes = None  # built by the load-control driver only
+        self.active_sets, self.update_norms = [], []
+        n_rigid, n_p = len(self.contacts), len(sc["pressure"])
+        self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
+                                   if n_rigid else "no contact")]
+        if n_p:
+            self.effects.append(f"{n_p} follower pressure{'s' if n_p > 1 else ''}")
+        self.effects.append({"load": "load control", "arclength": "arc-length continuation",
+                             "displacement": "displacement control"}[sc["steps"]["control"]])
+
+    def _build_body(self, mesh):
         if mesh["builder"] == "file":
-            body = geometry.read_msh(self.comm, mesh["file"])
-        elif mesh["builder"] == "shell_octant":
+            return geometry.read_msh(self.comm, mesh["file"])
+        if mesh["builder"] == "shell_octant":
             from .shell import build_shell_octant
 
-            body = build_shell_octant(self.comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
-        else:
-            body = geometry.build_box(self.comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
-        self.body = body
-        psi, params, mat_desc = resolve_material(sc["material"], law)
+            return build_shell_octant(self.comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
+        return geometry.build_box(self.comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
+
+    def _tag(self, surface, key):
+        if surface not in self.body.surfaces:
+            raise SceneError(f"scene key '{key}': the mesh has no surface {surface!r} "
+                             f"(it has {', '.join(sorted(self.body.surfaces))})")
+        return self.body.surfaces[surface]
+
+    def _build_volume(self, law):
+        """The unknown, the displacement view of it, and the volume forms of
+        the chosen formulation: (R, J, u, v, description)."""
+        sc, mesh = self.scene, self.body.mesh
+        psi, params, desc = resolve_material(sc["material"], law)
         disc = sc["discretisation"]
         name = sc["material"]["law"]
         if disc["formulation"] != "displacement" and (law is not None or name not in materials.ISOCHORIC):
@@ -133,85 +163,61 @@ class Simulation:
         if np.isinf(params.get("K", 0.0)) and disc["formulation"] != "mixed":
             raise SceneError("scene key 'material.parameters.K': K = inf (incompressible) needs "
                              "discretisation.formulation = \"mixed\"")
+        if sc["contact"] and (disc["degree"] != 1 or disc["formulation"] == "mixed"):
+            raise SceneError("scene key 'discretisation': contact needs the displacement or sri "
+                             "formulation with degree 1")
         iso_params = {k: v for k, v in params.items() if k != "K"}
+        qdeg = disc["quadrature_degree"]
         if disc["formulation"] == "mixed":
-            if disc["quadrature_degree"] < 4:
+            if qdeg < 4:
                 raise SceneError("scene key 'discretisation.quadrature_degree': the mixed formulation's "
-                                 "quadratic hexahedra need 3×3×3 Gauss points (degree >= 4), found "
-                                 f"{disc['quadrature_degree']}: fewer leave zero-energy modes")
+                                 f"quadratic hexahedra need 3×3×3 Gauss points (degree >= 4), found {qdeg}: "
+                                 "fewer leave zero-energy modes")
             # The unknown is w = (u, p); self.u is its displacement part, refreshed after each solve.
-            self.w = dfx.fem.Function(dfx.taylor_hood_space(body.mesh), name="solution")
+            self.w = dfx.fem.Function(dfx.taylor_hood_space(mesh), name="solution")
             self.V, self._u_dofs = dfx.collapse(self.w.function_space.sub(0))
             self.u = dfx.fem.Function(self.V, name="displacement")
-            u_unknown, v_unknown = ufl.split(self.w)[0], ufl.split(ufl.TestFunction(self.w.function_space))[0]
-            R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, params["K"],
-                                         disc["quadrature_degree"])
-            mat_desc += ", mixed u–p (Taylor–Hood Q2–Q1)"
+            u, v = ufl.split(self.w)[0], ufl.split(ufl.TestFunction(self.w.function_space))[0]
+            R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
+            return R, J, u, v, desc + ", mixed u–p (Taylor–Hood Q2–Q1)"
+        self.V = dfx.vector_space(mesh, disc["degree"])
+        self.u = self.w = dfx.fem.Function(self.V, name="displacement")
+        self._u_dofs = None
+        if disc["formulation"] == "sri":
+            R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
+            desc += ", selective reduced integration"
         else:
-            self.V = dfx.vector_space(body.mesh, disc["degree"])
-            self.u = self.w = dfx.fem.Function(self.V, name="displacement")
-            self._u_dofs = None
-            u_unknown, v_unknown = self.u, ufl.TestFunction(self.V)
-            if disc["formulation"] == "sri":
-                R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"],
-                                                      disc["quadrature_degree"])
-                mat_desc += ", selective reduced integration"
-            else:
-                R, J = volume.displacement_forms(self.u, psi, params, disc["quadrature_degree"])
+            R, J = volume.displacement_forms(self.u, psi, params, qdeg)
+        return R, J, self.u, ufl.TestFunction(self.V), desc
+
+    def _build_constraints(self):
+        """Dirichlet conditions, and the mask of constrained local dofs."""
         W = self.w.function_space
-
-        def tag_of(surface, key):
-            if surface not in body.surfaces:
-                raise SceneError(f"scene key '{key}': the mesh has no surface {surface!r} "
-                                 f"(it has {', '.join(sorted(body.surfaces))})")
-            return body.surfaces[surface]
-
-        self.bcs = []
-        for i, bc in enumerate(sc["bc"]):
-            facets = dfx.facets_with_tag(body.facet_tags, tag_of(bc["surface"], f"bc[{i}].surface"))
-            displacement_space = W.sub(0) if self._u_dofs is not None else W
-            self.bcs += [dfx.dirichlet_component(displacement_space, AXIS[a], facets) for a in bc["fix"]]
+        displacement_space = W.sub(0) if self._u_dofs is not None else W
+        bcs = []
+        for i, bc in enumerate(self.scene["bc"]):
+            facets = dfx.facets_with_tag(self.body.facet_tags, self._tag(bc["surface"], f"bc[{i}].surface"))
+            bcs += [dfx.dirichlet_component(displacement_space, AXIS[a], facets) for a in bc["fix"]]
         constrained = np.zeros(self.w.x.array.size, dtype=bool)
-        for bc in self.bcs:
+        for bc in bcs:
             constrained[dfx.bc_dofs(bc)] = True
+        return bcs, constrained
 
-        # Follower pressures p = λ × value: residual terms, and q = ∂R/∂λ for continuation.
-        self.load_factor = dfx.constant(body.mesh, 0.0)
+    def _add_pressures(self, R, J, u, v):
+        """Follower pressures p = λ × value: residual terms, and q = ∂R/∂λ
+        (kept for continuation)."""
+        self.load_factor = dfx.constant(self.body.mesh, 0.0)
         self.q_form = None
-        ds = dfx.facet_integration_measure(body.mesh, body.facet_tags, disc["quadrature_degree"])
-        for i, pr in enumerate(sc["pressure"]):
-            surface = ds(tag_of(pr["surface"], f"pressure[{i}].surface"))
-            term = loads.follower_pressure(u_unknown, v_unknown, pr["value"], surface)
+        ds = dfx.facet_integration_measure(self.body.mesh, self.body.facet_tags,
+                                           self.scene["discretisation"]["quadrature_degree"])
+        for i, pr in enumerate(self.scene["pressure"]):
+            surface = ds(self._tag(pr["surface"], f"pressure[{i}].surface"))
+            term = loads.follower_pressure(u, v, pr["value"], surface)
             self.q_form = term if self.q_form is None else self.q_form + term
-        if self.q_form is not None:
-            R = R + self.load_factor * self.q_form
-            J = J + self.load_factor * ufl.derivative(self.q_form, self.w, ufl.TrialFunction(W))
-
-        self.contacts = []
-        for i, c in enumerate(sc["contact"]):
-            tag = tag_of(c["surface"], f"contact[{i}].surface")
-            if sc["discretisation"]["degree"] != 1 or self._u_dofs is not None:
-                raise SceneError("scene key 'discretisation': contact needs the displacement or sri "
-                                 "formulation with degree 1")
-            self.contacts.append(RigidContact(c, self.V, body.facet_tags, tag, constrained))
-
-        size = np.ptp(body.mesh.geometry.x, axis=0).max()
-        size = self.comm.allreduce(size, op=MPI.MAX)
-        self.probes = {name: Probe(name, p, self.V, 1e-6 * size)
-                       for name, p in sc["output"]["probes"].items()}
-        self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
-        self.snes = make_snes(self.problem, self.comm, sc["solver"])
-        self.snes.setConvergenceHistory(length=sc["solver"]["max_it"] + 1, reset=True)
-        self.snes.setMonitor(self._monitor)
-        self.active_sets, self.update_norms = [], []
-        n_rigid = len(self.contacts)
-        contact_desc = (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
-                        if n_rigid else "no contact")
-        control = {"load": "load control", "arclength": "arc-length continuation",
-                   "displacement": "displacement control"}[sc["steps"]["control"]]
-        n_p = len(sc["pressure"])
-        self.effects = [mat_desc, contact_desc] + ([f"{n_p} follower pressure{'s' if n_p > 1 else ''}"] if n_p else [])
-        self.effects.append(control)
+        if self.q_form is None:
+            return R, J
+        dw = ufl.TrialFunction(self.w.function_space)
+        return R + self.load_factor * self.q_form, J + self.load_factor * ufl.derivative(self.q_form, self.w, dw)
 
     def _monitor(self, snes, its, norm):
         """Per Newton iteration: the norm of the Newton correction and the
@@ -328,6 +334,9 @@ class Simulation:
     def _load_control(self, writer, split, out_dir, state=None):
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
+        self.snes = make_snes(self.problem, self.comm, self.scene["solver"])
+        self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
+        self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0
         if state is not None:
             lam, dlam = state["lam"], state["dlam"]
