@@ -1,29 +1,71 @@
 """Results of a run, in one folder, written as the run goes.
 
-- ``fields.xdmf``: displacement, contact gap and pressure per converged step
-  (ParaView); contact fields are zero off the contact surfaces.
+- ``fields.xdmf``: per converged step (ParaView): ``displacement`` (vertex
+  values), ``contact_gap`` and ``contact_pressure`` when there are contacts
+  (zero off the contact surfaces), and cell-wise constant (DG0) fields at
+  each cell's midpoint: ``J`` = det F, and, when the writer is given the
+  material's stress, ``cauchy_stress`` σ = J⁻¹ P Fᵀ (3×3, row by row) and
+  ``von_mises`` √(3/2 s:s), s = dev σ. A field with a NaN or an infinite
+  value is never written: :class:`NonFiniteField` names it and the step.
 - ``curves.csv``: one row per converged step: load factor, each contact's
   obstacle displacement and force on the body (× symmetry factor), probe
   displacements, Newton iterations.
 - ``summary.json``: the scene as it ran, the effects built, status, every
   step's Newton history and the wall-time split; rewritten after each step,
   so a failed run keeps every converged step on disk.
+- ``curves.png``, ``deformed.png``: drawn at the end of a run that converged
+  at least one step (completed or not; :mod:`hypercontact.pictures`): the
+  contact forces (or pressures) against the first contact's displacement (or
+  the first probe's), and the deformed boundary coloured by |u|. A picture
+  that cannot be drawn never stops a run: summary.json says why
+  (``"pictures"``).
 """
+import contextlib
 import csv
 import json
 import time
 from pathlib import Path
 
 import numpy as np
+import ufl
 from mpi4py import MPI
 
 from . import _dolfinx as dfx
 
 
+class NonFiniteField(RuntimeError):
+    """A field about to be written to fields.xdmf has NaN or infinite values."""
+
+
+def first_piola_stress(psi, **params):
+    """``stress(u)`` for :class:`ResultsWriter` from a law ψ(F, **params):
+    P = ∂ψ/∂F by UFL at F = I + ∇u."""
+
+    def stress(u):
+        F = ufl.variable(ufl.Identity(len(u)) + ufl.grad(u))
+        return ufl.diff(psi(F, **params), F)
+
+    return stress
+
+
+def von_mises(sigma):
+    """√(3/2 s:s), s = σ − tr σ / 3 I, of an array of 3×3 tensors (n, 3, 3)."""
+    s = sigma - np.trace(sigma, axis1=1, axis2=2)[:, None, None] / 3.0 * np.eye(3)
+    return np.sqrt(1.5 * np.einsum("nij,nij->n", s, s))
+
+
 class ResultsWriter:
-    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes, previous=None):
+    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes, previous=None, stress=None):
         """``previous``: the checkpointed state of an interrupted run being
-        resumed: its steps are kept, the CSV rewritten, the XDMF appended."""
+        resumed: its steps are kept, the CSV rewritten, the XDMF appended.
+
+        ``stress``: the material's first Piola–Kirchhoff stress, a callable
+        ``stress(u) -> P`` (a 3×3 UFL expression of the displacement u, e.g.
+        :func:`first_piola_stress`); with it, fields.xdmf also holds the
+        Cauchy stress and its von Mises value. u is the solution's own
+        displacement (degree 2 in the mixed formulation: the cell fields are
+        evaluated from it at the cell midpoints, not from its vertex values).
+        """
         self.comm, self.scene, self.effects = comm, scene, effects
         self.u, self.contacts, self.probes = u, contacts, probes
         self.out = Path(out_dir)
@@ -57,6 +99,30 @@ class ResultsWriter:
             self._frames_on_disk = max(frames - len(self.steps), 0)
         self.xdmf = (dfx.XDMFWriter(comm, self.out / "fields.xdmf", V.mesh, append=append)
                      if scene["output"]["xdmf"] else None)
+        # Cell-wise constant fields (DG0) at the cell midpoints; their kernels
+        # are compiled at the first step (FFCx JIT, timed as output).
+        self.stress = stress
+        self._cell_kernels = None
+        if self.xdmf is not None:
+            S = dfx.fem.FunctionSpace(V.mesh, ("DG", 0))
+            self.J = dfx.fem.Function(S, name="J")
+            if stress is not None:
+                T = dfx.fem.TensorFunctionSpace(V.mesh, ("DG", 0))
+                self.sigma = dfx.fem.Function(T, name="cauchy_stress")
+                self.von_mises = dfx.fem.Function(S, name="von_mises")
+        self.fields = {}
+        if self.xdmf is not None:
+            self.fields["displacement"] = "vertex values (Lagrange degree 1), mm"
+            if contacts:
+                self.fields["contact_gap"] = "vertex values, mm (0 off the contact surfaces)"
+                self.fields["contact_pressure"] = "vertex values, MPa (0 off the contact surfaces)"
+            self.fields["J"] = "per cell (DG0, at the midpoint): det F"
+            if stress is not None:
+                self.fields["cauchy_stress"] = "per cell (DG0, at the midpoint): σ = J⁻¹ P Fᵀ, 3×3 row by row, MPa"
+                self.fields["von_mises"] = "per cell (DG0, at the midpoint): √(3/2 s:s), s = dev σ, MPa"
+        self.pictures = {}
+        # The displacement of the last converged step, for the picture drawn at the end.
+        self._u_last = u.x.array.copy() if self.steps else None
         self.columns = ["step", "load_factor", "newton_iterations"]
         for c in contacts:
             self.columns += [f"{c.name}_displacement"] + [f"{c.name}_f{a}" for a in "xyz"]
@@ -74,6 +140,8 @@ class ResultsWriter:
             self._csv_file.flush()
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=()):
+        # The fields first: a non-finite one stops here, before anything of this step is recorded.
+        fields = self._fields(load_factor) if self.xdmf is not None and self._frames_on_disk == 0 else None
         row = {"step": len(self.steps) + 1, "load_factor": load_factor,
                "newton_iterations": iterations}
         for c in self.contacts:
@@ -94,19 +162,70 @@ class ResultsWriter:
             self._csv.writerow([row[k] for k in self.columns])
             self._csv_file.flush()
         if self.xdmf is not None:
-            self._write_fields(load_factor)
+            self._write_fields(load_factor, fields)
+        self._u_last = self.u.x.array.copy()
         self.write_summary(timers)
         return row
 
-    def _write_fields(self, t):
+    def _write_fields(self, t, fields):
         if self._frames_on_disk > 0:
             self._frames_on_disk -= 1
             return
+        self.xdmf.write(fields, t)
+
+    def _fields(self, t):
+        """The functions to write at this step, checked to be finite."""
         if self.u_out is not self.u:
             self.u_out.interpolate(self.u)
-        if not self.contacts:
-            self.xdmf.write([self.u_out], t)
-            return
+        self._check_finite([self.u_out], t)  # first: the other fields are computed from it
+        fields = self._contact_fields() if self.contacts else []
+        fields += self._cell_fields()
+        self._check_finite(fields, t)
+        return [self.u_out] + fields
+
+    def _cell_kernels_compiled(self):
+        """DG0 interpolation kernels of J and (with a stress law) σ = J⁻¹ P Fᵀ."""
+        u = self.u
+        F = ufl.Identity(len(u)) + ufl.grad(u)
+        J = ufl.det(F)
+        points = self.J.function_space.element.interpolation_points
+        points = points() if callable(points) else points  # a method in dolfinx 0.5, a property later
+        kernels = {"J": dfx.fem.Expression(J, points)}
+        if self.stress is not None:
+            P = self.stress(u)
+            if not isinstance(P, ufl.core.expr.Expr) or P.ufl_shape != (3, 3):
+                raise TypeError("ResultsWriter: stress(u) must return the first Piola–Kirchhoff stress as a "
+                                f"3×3 UFL expression, returned {getattr(P, 'ufl_shape', type(P).__name__)}")
+            kernels["cauchy_stress"] = dfx.fem.Expression(P * F.T / J, points)
+        return kernels
+
+    def _cell_fields(self):
+        if self._cell_kernels is None:
+            self._cell_kernels = self._cell_kernels_compiled()
+        self.J.interpolate(self._cell_kernels["J"])
+        if self.stress is None:
+            return [self.J]
+        self.sigma.interpolate(self._cell_kernels["cauchy_stress"])
+        with np.errstate(invalid="ignore"):  # NaN in, NaN out: caught by the check
+            self.von_mises.x.array[:] = von_mises(self.sigma.x.array.reshape(-1, 3, 3))
+        return [self.sigma, self.von_mises, self.J]
+
+    def _check_finite(self, functions, t):
+        """Raise NonFiniteField naming every field with a NaN or an infinite value."""
+        counts = []
+        for f in functions:
+            V = f.function_space
+            owned = dfx.num_owned_nodes(V) * V.dofmap.index_map_bs
+            counts.append([int(np.count_nonzero(~np.isfinite(f.x.array[:owned]))), owned])
+        counts = np.array(counts, dtype=np.int64).reshape(-1, 2)
+        self.comm.Allreduce(MPI.IN_PLACE, counts, op=MPI.SUM)
+        bad = [f"'{f.name}' ({n} of {total} values)" for f, (n, total) in zip(functions, counts) if n]
+        if bad:
+            raise NonFiniteField(
+                f"non-finite field{'s' if len(bad) > 1 else ''} {', '.join(bad)} at step {len(self.steps) + 1} "
+                f"(load factor {t:.6g}): NaN or infinite values, not written to {self.out / 'fields.xdmf'}")
+
+    def _contact_fields(self):
         n_local = dfx.num_local_nodes(self.u.function_space)
         gap, pressure = np.zeros(n_local), np.zeros(n_local)
         for c in self.contacts:
@@ -117,15 +236,105 @@ class ResultsWriter:
         self.pressure.x.array[:] = pressure[self.q_nodes]
         dfx.update_ghosts(self.gap)
         dfx.update_ghosts(self.pressure)
-        self.xdmf.write([self.u_out, self.gap, self.pressure], t)
+        return [self.gap, self.pressure]
 
     def finish(self, status, message, timers):
+        """Close the files, draw the pictures (if a step converged) and write
+        the final summary. Collective."""
         self.status, self.message = status, message
-        self.write_summary(timers)
         if self.xdmf is not None:
             self.xdmf.close()
         if self.rank0:
             self._csv_file.close()
+        timed = timers("output") if callable(timers) else contextlib.nullcontext()
+        with timed:
+            self.pictures = self.draw_pictures()
+        self.write_summary(timers)
+
+    def curve_columns(self):
+        """(x, ys) drawn in curves.png: the contact forces (each contact's
+        largest component) against the first contact's displacement; without
+        contacts, the pressures (else the load factor) against the stop
+        probe's controlled component, or the first probe's largest one."""
+        def largest(columns):
+            return max(columns, key=lambda c: max(abs(s[c]) for s in self.steps))
+
+        if self.contacts:
+            x = f"{self.contacts[0].name}_displacement"
+            return x, [largest([f"{c.name}_f{a}" for a in "xyz"]) for c in self.contacts]
+        st = self.scene["steps"]
+        if st.get("control", "load") != "load" and st.get("stop_probe") in self.probes:
+            x = f"{st['stop_probe']}_u{st['stop_component']}"
+        elif self.probes:
+            x = largest([f"{next(iter(self.probes))}_u{a}" for a in "xyz"])
+        else:
+            x = "load_factor"
+        ys = list(self.pressures) or (["load_factor"] if x != "load_factor" else ["newton_iterations"])
+        return x, ys
+
+    def draw_pictures(self):
+        """curves.png (rank 0) and deformed.png (collective) of the last
+        converged step. Never raises: returns what was drawn, or why not.
+        Every collective call is reached on every rank, whatever fails."""
+        if not self.steps or self._u_last is None:
+            return {"skipped": "no converged step"}
+        done, error = {}, None
+        try:
+            from . import pictures
+        except Exception as err:  # e.g. matplotlib missing
+            error = f"failed: {type(err).__name__}: {err}"
+        errors = [e for e in self.comm.allgather(error) if e]
+        if errors:
+            return {"curves.png": errors[0], "deformed.png": errors[0]}
+        title = self.scene.get("title") or self.out.name
+        if self.rank0:
+            try:
+                x, ys = self.curve_columns()
+                pictures.load_curves(self.out / "curves.csv", self.out / "curves.png", x, ys, title=title)
+                done["curves.png"] = f"{', '.join(ys)} against {x}"
+            except Exception as err:
+                done["curves.png"] = f"failed: {type(err).__name__}: {err}"
+        try:
+            u = dfx.fem.Function(self.u.function_space, name="displacement")
+            u.x.array[:] = self._u_last
+        except Exception as err:
+            u, error = None, f"failed: {type(err).__name__}: {err}"
+        errors = [e for e in self.comm.allgather(error) if e]
+        if errors:
+            done["deformed.png"] = errors[0]
+            return done
+        scale = self._picture_scale(u)
+        last = self.steps[-1]
+        magnified = f", displacements × {scale:g}" if scale != 1 else ""
+        # With contacts, look from the low-x, low-y side: the symmetry cuts of a
+        # quarter model and what an obstacle presses into them show. Without,
+        # from the high side: the outside of a shell octant.
+        view = (28.0, -130.0) if self.contacts else (28.0, 50.0)
+        try:  # collective, and raises on every rank or on none
+            pictures.deformed_shape(
+                self.u.function_space.mesh, u, None, self.out / "deformed.png", scale=scale, view=view,
+                title=f"{title}\nstep {last['step']}, load factor {last['load_factor']:.4g}{magnified}")
+            done["deformed.png"] = f"|u| on the deformed boundary at step {last['step']}{magnified}"
+        except Exception as err:
+            done["deformed.png"] = f"failed: {type(err).__name__}: {err}"
+        return done
+
+    def _picture_scale(self, u):
+        """1, or a round magnification when the largest displacement is below
+        2 % of the body's size (so that the deformation shows). Collective."""
+        x = u.function_space.mesh.geometry.x
+        extent = np.full(7, -np.inf)  # −min x, max x, max |u|
+        if len(x):
+            extent[:3], extent[3:6] = -x.min(axis=0), x.max(axis=0)
+        U = u.x.array.reshape(-1, 3)
+        if len(U):
+            extent[6] = np.linalg.norm(U, axis=1).max()
+        self.comm.Allreduce(MPI.IN_PLACE, extent, op=MPI.MAX)
+        size, umax = float(np.linalg.norm(extent[3:6] + extent[:3])), float(extent[6])
+        if not np.isfinite(umax) or umax <= 0.0 or umax >= 0.02 * size:
+            return 1.0
+        target = 0.1 * size / umax
+        return float(max(m * 10.0 ** e for e in range(0, 9) for m in (1, 2, 5) if m * 10.0 ** e <= target))
 
     def write_summary(self, timers):
         wall = self.comm.allreduce(time.perf_counter() - self.started, op=MPI.MAX)
@@ -135,7 +344,8 @@ class ResultsWriter:
             "status": self.status, "message": self.message, "effects": self.effects,
             "ranks": self.comm.size, "wall_time": wall, "time_split": split,
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
-            "limit_points": self.limit_points, "steps": self.steps, "scene": self.scene,
+            "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
+            "steps": self.steps, "scene": self.scene,
         }
         if self.rank0:
             tmp = self.out / "summary.json.tmp"

@@ -17,7 +17,7 @@ from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, Di
 from .continuation import step as continuation_step
 from .forms import loads, materials, volume
 from .problem import Problem, converged_reason_name, make_snes, residual_norms_of
-from .results import ResultsWriter
+from .results import ResultsWriter, first_piola_stress
 from .scene import SceneError
 from .timing import Timers
 
@@ -117,7 +117,7 @@ class Simulation:
         on each other: body, volume forms, constraints, loads, contacts."""
         sc = self.scene
         self.body = self._build_body(sc["mesh"])
-        R, J, u_unknown, v_unknown, mat_desc = self._build_volume(law)
+        R, J, u_unknown, v_unknown, mat_desc, self.stress = self._build_volume(law)
         self.bcs, constrained = self._build_constraints()
         R, J = self._add_pressures(R, J, u_unknown, v_unknown)
         self.contacts = [RigidContact(c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"),
@@ -179,7 +179,15 @@ class Simulation:
             self.u = dfx.fem.Function(self.V, name="displacement")
             u, v = ufl.split(self.w)[0], ufl.split(ufl.TestFunction(self.w.function_space))[0]
             R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
-            return R, J, u, v, desc + ", mixed u–p (Taylor–Hood Q2–Q1)"
+            p = ufl.split(self.w)[1]
+
+            def stress(u_out):
+                """P = ∂ψ_iso/∂F + p J F⁻ᵀ with the pressure unknown p."""
+                F = ufl.variable(ufl.Identity(3) + ufl.grad(u_out))
+                P_iso = ufl.diff(materials.ISOCHORIC[name](F, **iso_params), F)
+                return P_iso + p * ufl.det(F) * ufl.inv(F).T
+
+            return R, J, u, v, desc + ", mixed u–p (Taylor–Hood Q2–Q1)", stress
         self.V = dfx.vector_space(mesh, disc["degree"])
         self.u = self.w = dfx.fem.Function(self.V, name="displacement")
         self._u_dofs = None
@@ -188,7 +196,7 @@ class Simulation:
             desc += ", selective reduced integration"
         else:
             R, J = volume.displacement_forms(self.u, psi, params, qdeg)
-        return R, J, self.u, ufl.TestFunction(self.V), desc
+        return R, J, self.u, ufl.TestFunction(self.V), desc, first_piola_stress(psi, **params)
 
     def _build_constraints(self):
         """Dirichlet conditions, and the mask of constrained local dofs."""
@@ -297,7 +305,7 @@ class Simulation:
         events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         t0 = {name: e.getPerfInfo()["time"] for name, e in events.items()}
         writer = ResultsWriter(out_dir, self.comm, self.scene, self.effects, self.u, self.contacts, self.probes,
-                               previous=state)
+                               previous=state, stress=self.stress)
         self.log(f"hypercontact: {', '.join(self.effects)}; "
                  f"{dfx.num_global_dofs(self.w.function_space)} unknowns on {self.comm.size} rank(s)")
 
