@@ -5,7 +5,7 @@ import csv
 import h5py
 import numpy as np
 import pytest
-from conftest import quiet
+
 from mpi4py import MPI
 
 from hypercontact import scene

@@ -66,7 +66,6 @@ def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0)):
     for _, tag in gmsh.model.getEntities(3):
         gmsh.model.mesh.setTransfiniteVolume(tag)
     lo = np.array(origin, dtype=float)
-    hi = lo + np.array(size, dtype=float)
     tol = 1e-5 * max(size)  # OCC bounding boxes are padded by ~1e-7
     names = {}
     for _, tag in gmsh.model.getEntities(2):
