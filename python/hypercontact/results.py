@@ -23,6 +23,7 @@
 import contextlib
 import csv
 import json
+import resource
 import time
 from pathlib import Path
 
@@ -340,9 +341,13 @@ class ResultsWriter:
         wall = self.comm.allreduce(time.perf_counter() - self.started, op=MPI.MAX)
         split = {k: self.comm.allreduce(v, op=MPI.MAX) for k, v in sorted(timers.seconds.items())}
         split["other"] = max(wall - sum(split.values()), 0.0)
+        peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kB
+        calls = {k: self.comm.allreduce(v, op=MPI.MAX) for k, v in sorted(timers.calls.items())}
         summary = {
             "status": self.status, "message": self.message, "effects": self.effects,
-            "ranks": self.comm.size, "wall_time": wall, "time_split": split,
+            "ranks": self.comm.size, "wall_time": wall, "time_split": split, "calls": calls,
+            "peak_memory_mb": {"max_rank": self.comm.allreduce(peak_mb, op=MPI.MAX),
+                               "sum_ranks": self.comm.allreduce(peak_mb, op=MPI.SUM)},
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
             "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
             "steps": self.steps, "scene": self.scene,

@@ -126,6 +126,7 @@ class Simulation:
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in sc["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
         self.snes = None  # built by the load-control driver only
+        self.bordered = None  # built by the continuation driver only
         self.active_sets, self.update_norms = [], []
         n_rigid, n_p = len(self.contacts), len(sc["pressure"])
         self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
@@ -385,7 +386,8 @@ class Simulation:
         """Arc-length or displacement control (see continuation.py) until the
         stop probe's displacement component reaches steps.stop_value."""
         st, sv = self.scene["steps"], self.scene["solver"]
-        bordered = Bordered(self.problem, self.q_form, self.bcs, self.comm, sv["petsc"], timers=self.timers)
+        bordered = self.bordered = Bordered(self.problem, self.q_form, self.bcs, self.comm, sv["petsc"],
+                                            timers=self.timers)
         x = self.problem.x
         self.w.vector.copy(x)
         probe = self.probes[st["stop_probe"]]
