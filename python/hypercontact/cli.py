@@ -41,8 +41,11 @@ def _parser():
 
 def _scene_path(name):
     path = Path(name)
-    if not path.exists() and (SCENES / f"{name}.toml").is_file():
-        return SCENES / f"{name}.toml"
+    try:
+        if not path.exists() and (SCENES / f"{name}.toml").is_file():
+            return SCENES / f"{name}.toml"
+    except OSError:  # e.g. a name too long for the file system: scene.load says so
+        pass
     return path
 
 
@@ -97,6 +100,8 @@ def main(argv=None):
             if comm.rank == 0:
                 print(f"{args.scene}: valid")
             return 0
+        from petsc4py import PETSc
+
         from .simulation import Simulation, StepFailure
 
         # MPI and PETSc install their own SIGINT handlers; Ctrl-C must reach
@@ -108,6 +113,12 @@ def main(argv=None):
         except StepFailure as failure:
             print(f"hypercontact: {failure}", file=err)
             return 3
+        except PETSc.Error as failure:
+            # a PETSc option value that PETSc rejects only when it uses it
+            print(f"hypercontact: invalid scene: scene key 'solver.petsc': PETSc rejected one of "
+                  f"{sc['solver']['petsc']} when it used it (error code {failure.ierr}); "
+                  f"converged steps are on disk", file=err)
+            return 2
         except KeyboardInterrupt:
             print("hypercontact: interrupted; converged steps are on disk (--resume continues)", file=err)
             return 130

@@ -18,6 +18,7 @@ import numpy as np
 from petsc4py import PETSc
 
 from . import _dolfinx as dfx
+from .problem import set_prefixed_options
 
 
 class ContinuationFailure(RuntimeError):
@@ -32,10 +33,8 @@ class Bordered:
         self.q_form = dfx.compile_form(q_form)
         self.ksp = PETSc.KSP().create(comm)
         self.ksp.setOptionsPrefix(prefix)
-        opts = PETSc.Options()
         defaults = {"ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}
-        for key, value in {**defaults, **petsc_options}.items():
-            opts[prefix + key] = value
+        set_prefixed_options(prefix, {**defaults, **petsc_options})
         self.ksp.setOperators(problem.A)
         self.ksp.setFromOptions()
         b = problem.b
@@ -85,8 +84,12 @@ class ArcLengthConstraint:
         self.size = size
 
     def predictor(self, t, du_prev):
+        norm = t.norm()
+        if not norm > 0.0:
+            raise ContinuationFailure("the load does no work on the free degrees of freedom "
+                                      "(its tangent direction is zero)")
         direction = 1.0 if du_prev is None or t.dot(du_prev) >= 0 else -1.0
-        return direction * self.size / t.norm()
+        return direction * self.size / norm
 
     def correction(self, Du, du_R, t, Du_old):
         """δλ solving |Du + du_R + δλ t|² = Δl², the root that keeps the

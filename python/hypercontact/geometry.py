@@ -66,7 +66,7 @@ def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0)):
     for _, tag in gmsh.model.getEntities(3):
         gmsh.model.mesh.setTransfiniteVolume(tag)
     lo = np.array(origin, dtype=float)
-    tol = 1e-5 * max(size)  # OCC bounding boxes are padded by ~1e-7
+    tol = max(1e-5 * max(size), 1e-6)  # OCC bounding boxes are padded by ~1e-7 (absolute)
     names = {}
     for _, tag in gmsh.model.getEntities(2):
         b = np.array(gmsh.model.getBoundingBox(2, tag))

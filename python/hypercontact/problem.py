@@ -52,12 +52,22 @@ class Problem:
             A.assemble()
 
 
+def set_prefixed_options(prefix, options):
+    """Put ``options`` into PETSc's global options under ``prefix``, first
+    removing whatever an earlier simulation in this process left there."""
+    opts = PETSc.Options()
+    for key in list(opts.getAll()):
+        if key.startswith(prefix):
+            opts.delValue(key)
+    for key, value in options.items():
+        opts[prefix + key] = value
+
+
 def make_snes(problem, comm, solver, prefix="hc_"):
     """A newtonls SNES with MUMPS LU by default; solver["petsc"] options
     (without prefix) override anything."""
     snes = PETSc.SNES().create(comm)
     snes.setOptionsPrefix(prefix)
-    opts = PETSc.Options()
     defaults = {
         "snes_type": "newtonls",
         "snes_linesearch_type": solver["linesearch"],
@@ -65,8 +75,7 @@ def make_snes(problem, comm, solver, prefix="hc_"):
         "pc_type": "lu",
         "pc_factor_mat_solver_type": "mumps",
     }
-    for key, value in {**defaults, **solver["petsc"]}.items():
-        opts[prefix + key] = value
+    set_prefixed_options(prefix, {**defaults, **solver["petsc"]})
     snes.setFunction(problem.residual, problem.b)
     snes.setJacobian(problem.jacobian, problem.A)
     snes.setTolerances(rtol=solver["rtol"], atol=solver["atol"], stol=0.0, max_it=solver["max_it"])

@@ -7,6 +7,8 @@ valid name suggested.
 """
 import copy
 import difflib
+import math
+import re
 import tomllib
 from pathlib import Path
 
@@ -22,8 +24,37 @@ def _num(x):
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
 
+def _finite(x):
+    return _num(x) and math.isfinite(x)
+
+
 def _vec3(x):
     return isinstance(x, list) and len(x) == 3 and all(_num(v) for v in x)
+
+
+def _finite_vec3(x):
+    return _vec3(x) and all(math.isfinite(v) for v in x)
+
+
+def _magnitude_ok(x):
+    """Numbers that scale the solution: beyond 1e±100 the squares in vector
+    norms under- or overflow (an arc-length step then divides by a zero norm)."""
+    return x == 0 or 1e-100 <= abs(x) <= 1e100
+
+
+def _path_ok(text):
+    """No NUL character, no name longer than the file system allows."""
+    return "\0" not in text and all(len(part.encode("utf-8", "surrogateescape")) <= 255
+                                    for part in text.split("/"))
+
+
+def _is_file(path, key, what):
+    """Whether ``path`` is a file; a path the OS cannot even look up is
+    rejected naming ``key``."""
+    try:
+        return path.is_file()
+    except (OSError, ValueError) as err:
+        _fail(key, f"{what} '{_printable(path, 200)}' cannot be looked up: {_printable(err, 120)}")
 
 
 def _positive(x):
@@ -32,6 +63,28 @@ def _positive(x):
 
 def _positive_vec(x):
     return all(v > 0 for v in x)
+
+
+#: Largest coordinate or length a built-in mesh builder accepts (OpenCASCADE
+#: and gmsh fail on values near their "infinite", about 1e100).
+MAX_LENGTH = 1e12
+#: Most hexahedra a built-in builder makes (a guard against n = 10**9).
+MAX_CELLS = 10**8
+#: Highest quadrature degree (degree 20 is already 11 × 11 × 11 points per
+#: hexahedron; FFCx would hang on 10**6).
+MAX_QUADRATURE_DEGREE = 20
+#: The built-in laws (hypercontact.forms.materials.LAWS) and their parameters
+#: (None = required); kept here so that checking a scene needs no UFL.
+BUILTIN_LAWS = {
+    "mooney_rivlin": {"alpha1": None, "alpha2": None, "K": None, "i2": "usual"},
+    "neo_hookean": {"mu": None, "K": None},
+}
+#: The surfaces of the built-in builders, each with the axis of its normal if
+#: it is a plane x, y or z = const (None for the spheres).
+BUILDER_SURFACES = {
+    "box": {"xmin": 0, "xmax": 0, "ymin": 1, "ymax": 1, "zmin": 2, "zmax": 2},
+    "shell_octant": {"inner": None, "outer": None, "xmin": 0, "ymin": 1, "zmin": 2},
+}
 
 
 class Key:
@@ -55,6 +108,10 @@ KINDS = {
 
 POSITIVE = (_positive, "> 0")
 NON_NEGATIVE = (lambda x: x >= 0, ">= 0")
+LENGTH = (lambda x: x <= MAX_LENGTH, f"at most {MAX_LENGTH:g}")
+COORDINATES = (lambda v: all(abs(c) <= MAX_LENGTH for c in v), f"coordinates of at most {MAX_LENGTH:g} in magnitude")
+MAGNITUDE = (lambda x: _magnitude_ok(x), "0 or a magnitude from 1e-100 to 1e+100")
+PATH = (lambda x: x != "" and _path_ok(x), "a non-empty path without NUL characters, each name at most 255 bytes")
 AXES = (lambda x: len(x) > 0 and set(x) <= {"x", "y", "z"}, 'a non-empty subset of ["x", "y", "z"]')
 
 SCHEMA = {
@@ -62,13 +119,14 @@ SCHEMA = {
     "mesh": {
         "builder": Key("string", "box", (lambda x: x in ("box", "shell_octant", "file"),
                                           '"box", "shell_octant" or "file"')),
-        "inner_radius": Key("number", 95.0, POSITIVE),
-        "thickness": Key("number", 1.0, POSITIVE),
-        "size": Key("vector", [1.0, 1.0, 1.0], (_positive_vec, "all sizes > 0")),
-        "origin": Key("vector", [0.0, 0.0, 0.0]),
+        "inner_radius": Key("number", 95.0, POSITIVE, LENGTH),
+        "thickness": Key("number", 1.0, POSITIVE, LENGTH),
+        "size": Key("vector", [1.0, 1.0, 1.0], (_positive_vec, "all sizes > 0"), COORDINATES),
+        "origin": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "n": Key("integer", 4, POSITIVE),
         "m": Key("integer", 4, POSITIVE),
-        "file": Key("string", ""),
+        "file": Key("string", "", (lambda x: _path_ok(x), "a path without NUL characters, each name at most "
+                                                           "255 bytes")),
     },
     "material": {
         "law": Key("string", REQUIRED),
@@ -76,14 +134,15 @@ SCHEMA = {
     },
     "discretisation": {
         "degree": Key("integer", 1, (lambda x: x in (1, 2), "1 or 2")),
-        "quadrature_degree": Key("integer", 2, POSITIVE),
+        "quadrature_degree": Key("integer", 2, (lambda x: 1 <= x <= MAX_QUADRATURE_DEGREE,
+                                                f"an integer from 1 to {MAX_QUADRATURE_DEGREE}")),
         "formulation": Key("string", "displacement", (lambda x: x in ("displacement", "sri", "mixed"),
                                                       '"displacement", "sri" (selective reduced integration) '
                                                       'or "mixed" (Taylor–Hood u–p)')),
     },
     "pressure": [{
         "surface": Key("string", REQUIRED),
-        "value": Key("number", REQUIRED),
+        "value": Key("number", REQUIRED, MAGNITUDE),
     }],
     "bc": [{
         "surface": Key("string", REQUIRED),
@@ -93,12 +152,13 @@ SCHEMA = {
         "name": Key("string", REQUIRED),
         "surface": Key("string", REQUIRED),
         "obstacle": Key("string", REQUIRED, (lambda x: x in ("plane", "box"), '"plane" or "box"')),
-        "point": Key("vector", [0.0, 0.0, 0.0]),
-        "normal": Key("vector", [0.0, 0.0, 1.0], (lambda v: any(c != 0 for c in v), "a non-zero vector")),
-        "lo": Key("vector", [0.0, 0.0, 0.0]),
-        "hi": Key("vector", [1.0, 1.0, 1.0]),
-        "motion": Key("vector", [0.0, 0.0, 0.0]),
-        "eps_n": Key("number", REQUIRED, POSITIVE),
+        "point": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
+        "normal": Key("vector", [0.0, 0.0, 1.0], (lambda v: 1e-100 <= math.hypot(*v) <= 1e100,
+                                                  "a non-zero vector (length from 1e-100 to 1e+100)")),
+        "lo": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
+        "hi": Key("vector", [1.0, 1.0, 1.0], COORDINATES),
+        "motion": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
+        "eps_n": Key("number", REQUIRED, POSITIVE, (lambda x: 1e-100 <= x <= 1e100, "from 1e-100 to 1e+100")),
         "mu": Key("number", 0.0, NON_NEGATIVE),
     }],
     "steps": {
@@ -117,14 +177,14 @@ SCHEMA = {
         "stop_value": Key("number", 1.0),
     },
     "solver": {
-        "rtol": Key("number", 1e-10, POSITIVE),
+        "rtol": Key("number", 1e-10, POSITIVE, (lambda x: x < 1, "< 1")),
         "atol": Key("number", 1e-10, POSITIVE),
-        "max_it": Key("integer", 25, POSITIVE),
+        "max_it": Key("integer", 25, (lambda x: 1 <= x <= 1000, "an integer from 1 to 1000")),
         "linesearch": Key("string", "basic", (lambda x: x in ("basic", "bt", "l2", "cp"), "a PETSc SNES line search: basic, bt, l2 or cp")),
         "petsc": Key("table", {}),
     },
     "output": {
-        "dir": Key("string", "results"),
+        "dir": Key("string", "results", PATH),
         "xdmf": Key("boolean", True),
         "symmetry_factor": Key("number", 1.0, POSITIVE),
         "probes": Key("table", {}),
@@ -132,12 +192,18 @@ SCHEMA = {
 }
 
 
+def _printable(text, limit):
+    """``text`` on one line (control characters escaped), at most ``limit`` characters."""
+    text = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], str(text))
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def _fail(path, msg):
-    raise SceneError(f"scene key '{path}': {msg}")
+    raise SceneError(f"scene key '{_printable(path, 120)}': {msg}")
 
 
 def _describe(value):
-    return f"{value!r} ({type(value).__name__})"
+    return f"{_printable(repr(value), 80)} ({type(value).__name__})"
 
 
 def _validate(data, schema, path):
@@ -147,7 +213,11 @@ def _validate(data, schema, path):
             data = float(data)
         if not ok(data):
             _fail(path, f"expected {what}, found {_describe(data)}")
+        if schema.kind == "number" and not math.isfinite(data):
+            _fail(path, f"expected a finite number, found {_describe(data)}")
         if schema.kind == "vector":
+            if not all(math.isfinite(v) for v in data):
+                _fail(path, f"expected a list of three finite numbers, found {_describe(data)}")
             data = [float(v) for v in data]
         for check, what in schema.checks:
             if not check(data):
@@ -182,6 +252,219 @@ def _validate(data, schema, path):
     return out
 
 
+def _check_mesh(mesh):
+    builder = mesh["builder"]
+    if builder == "box":
+        size = mesh["size"]
+        if min(size) < 1e-4 * max(size):
+            _fail("mesh.size", f"the smallest length must be at least 1e-4 × the largest (the surfaces are "
+                  f"told apart by a relative tolerance), found {size}")
+        if any(abs(o + s) > MAX_LENGTH for o, s in zip(mesh["origin"], size)):
+            _fail("mesh.size", f"the box reaches beyond coordinates of {MAX_LENGTH:g} (origin {mesh['origin']})")
+        cells = mesh["n"] * mesh["n"] * mesh["m"]
+    elif builder == "shell_octant":
+        if mesh["n"] % 2:
+            _fail("mesh.n", f"the shell_octant builder needs an even n (n/2 elements on each of the three "
+                  f"patches' edges), found {mesh['n']}")
+        r, t = mesh["inner_radius"], mesh["thickness"]
+        if t < 1e-6 * r or r < 1e-6 * t:
+            _fail("mesh.thickness", f"expected thickness and inner_radius within a factor 1e6 of each other "
+                  f"(the mesh degenerates otherwise), found thickness {t}, inner_radius {r}")
+        cells = 3 * (mesh["n"] // 2) ** 2 * mesh["m"]
+    else:
+        return
+    if cells > MAX_CELLS:
+        _fail("mesh.n", f"n = {mesh['n']}, m = {mesh['m']} make {cells:.3g} hexahedra, more than {MAX_CELLS:.0e}")
+
+
+def _check_probe_in_body(path, point, mesh):
+    """A probe of a built-in mesh lies in the body (whether a mesh node is
+    there is known once the mesh is built)."""
+    if mesh["builder"] == "box":
+        lo, size = mesh["origin"], mesh["size"]
+        tol = 1e-6 * max(size)
+        if any(not (l - tol <= p <= l + s + tol) for p, l, s in zip(point, lo, size)):
+            hi = [l + s for l, s in zip(lo, size)]
+            _fail(path, f"{point} is outside the body, the box from {lo} to {hi} (mesh.origin, mesh.size)")
+    elif mesh["builder"] == "shell_octant":
+        r, t = mesh["inner_radius"], mesh["thickness"]
+        tol = 1e-6 * (r + t)
+        radius = math.sqrt(sum(p * p for p in point))
+        if min(point) < -tol or not (r - tol <= radius <= r + t + tol):
+            _fail(path, f"{point} is outside the body, the octant x, y, z >= 0 of the shell "
+                  f"{r:g} <= |x| <= {r + t:g} (mesh.inner_radius, mesh.thickness)")
+
+
+def _check_parameters(material, formulation):
+    """Built-in laws: exactly their parameters, typed and in range; any law:
+    numbers finite (K = inf only for the incompressible limit)."""
+    law, params = material["law"], material["parameters"]
+    for key, value in params.items():
+        path = f"material.parameters.{key}"
+        if isinstance(value, list):
+            if not all(_finite(v) and _magnitude_ok(v) for v in value):
+                _fail(path, f"expected a number, a string, true/false or a list of finite numbers "
+                      f"({MAGNITUDE[1]}), found {_describe(value)}")
+        elif _num(value):
+            if math.isnan(value) or (math.isinf(value) and not (key == "K" and value > 0)):
+                _fail(path, f"expected a finite number{' (or K = inf)' if key == 'K' else ''}, "
+                      f"found {_describe(value)}")
+            if math.isfinite(value) and not _magnitude_ok(value):
+                _fail(path, f"expected {MAGNITUDE[1]}{' (or K = inf)' if key == 'K' else ''}, "
+                      f"found {_describe(value)}")
+        elif not isinstance(value, (str, bool)):
+            _fail(path, f"expected a number, a string, true/false or a list of numbers, found {_describe(value)}")
+    if law in BUILTIN_LAWS:
+        expected = BUILTIN_LAWS[law]
+        for key in params:
+            if key not in expected:
+                close = difflib.get_close_matches(key, list(expected), n=1)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                _fail(f"material.parameters.{key}", f"unknown parameter of {law} (expected "
+                      f"{', '.join(expected)}){hint}")
+        for key, default in expected.items():
+            if key not in params:
+                if default is None:
+                    _fail(f"material.parameters.{key}", f"missing (required by {law})")
+                params[key] = default
+        for key, value in params.items():
+            path = f"material.parameters.{key}"
+            if key == "i2":
+                if value not in ("usual", "paper"):
+                    _fail(path, f'expected "usual" or "paper", found {_describe(value)}')
+            elif not _num(value):
+                _fail(path, f"expected a number, found {_describe(value)}")
+            elif key == "K" and not value > 0:
+                _fail(path, f"expected a bulk modulus > 0 (inf: incompressible), found {_describe(value)}")
+        if law == "neo_hookean" and not params["mu"] > 0:
+            _fail("material.parameters.mu", f"expected a shear modulus > 0, found {_describe(params['mu'])}")
+        if law == "mooney_rivlin":
+            a1, a2 = params["alpha1"], params["alpha2"]
+            mu, formula = (2 * (a1 + a2), "2(alpha1 + alpha2)") if params["i2"] == "usual" else \
+                (2 * a1 + 8 * a2, "2 alpha1 + 8 alpha2")
+            if not mu > 0:
+                _fail("material.parameters", f"the small-strain shear modulus {formula} must be > 0, "
+                      f"found {mu:g} (alpha1 = {a1:g}, alpha2 = {a2:g}, i2 = {params['i2']!r})")
+    K = params.get("K")
+    if _num(K) and math.isinf(K) and formulation != "mixed":
+        _fail("material.parameters.K", 'K = inf (incompressible) needs discretisation.formulation = "mixed"')
+
+
+def _check_law(material, base_dir):
+    law = material["law"]
+    if not law.startswith("python:"):
+        return  # a built-in law, or a name for the function a driver script passes to Simulation
+    parts = law.split(":")
+    if len(parts) != 3 or not parts[1] or not parts[2]:
+        _fail("material.law", f"expected 'python:FILE.py:FUNCTION', found {_describe(law)}")
+    _, path, func = parts
+    if not _path_ok(path):
+        _fail("material.law", f"expected a file path without NUL characters, each name at most 255 bytes, "
+              f"found {_describe(path)}")
+    if not func.isidentifier():
+        _fail("material.law", f"'{_printable(func, 60)}' is not a Python function name")
+    f = Path(path)
+    if not f.is_absolute():
+        f = (base_dir / f).resolve()
+    if not _is_file(f, "material.law", "file"):
+        _fail("material.law", f"file '{f}' does not exist")
+    if f.suffix != ".py":
+        _fail("material.law", f"file '{f}' is not a Python file (.py)")
+    material["law"] = f"python:{f}:{func}"
+
+
+def _check_discretisation(scene):
+    disc, law = scene["discretisation"], scene["material"]["law"]
+    formulation = disc["formulation"]
+    if formulation != "displacement" and law not in BUILTIN_LAWS:
+        _fail("discretisation.formulation", f"{formulation!r} needs a built-in law "
+              f"({', '.join(BUILTIN_LAWS)}), found {_describe(law)}")
+    if formulation == "mixed" and disc["quadrature_degree"] < 4:
+        _fail("discretisation.quadrature_degree", "the mixed formulation's quadratic hexahedra need 3×3×3 "
+              f"Gauss points (degree >= 4), found {disc['quadrature_degree']}: fewer leave zero-energy modes")
+    if scene["contact"]:
+        if formulation == "mixed":
+            _fail("discretisation.formulation", "contact needs the displacement or sri formulation with "
+                  "degree 1, found \"mixed\"")
+        if disc["degree"] != 1:
+            _fail("discretisation.degree", "contact needs the displacement or sri formulation with degree 1, "
+                  f"found {disc['degree']}")
+
+
+def _check_surfaces(scene):
+    """Surface names of the built-in meshes; loads that would do no work."""
+    surfaces = BUILDER_SURFACES.get(scene["mesh"]["builder"])
+    if surfaces is None:
+        return  # a mesh file: its surfaces are known once it is read
+    for section in ("bc", "pressure", "contact"):
+        for i, entry in enumerate(scene[section]):
+            name = entry["surface"]
+            if name not in surfaces:
+                close = difflib.get_close_matches(name, list(surfaces), n=1)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                _fail(f"{section}[{i}].surface", f"the mesh has no surface {_printable(repr(name), 60)} "
+                      f"(it has {', '.join(sorted(surfaces))}){hint}")
+    seen = {}
+    for i, pr in enumerate(scene["pressure"]):
+        name = pr["surface"]
+        if name in seen:
+            _fail(f"pressure[{i}].surface", f"a second pressure on {name!r} (pressure[{seen[name]}]): "
+                  "give one [[pressure]] per surface, with the sum of the values")
+        seen[name] = i
+        axis = surfaces[name]
+        for j, bc in enumerate(scene["bc"]):
+            if bc["surface"] != name:
+                continue
+            fixed = set(bc["fix"])
+            if fixed == {"x", "y", "z"} or (axis is not None and "xyz"[axis] in fixed):
+                _fail(f"pressure[{i}].surface", f"the pressure on {name!r} acts along a direction that "
+                      f"bc[{j}] fixes ({bc['fix']}): it would do no work")
+
+
+def _check_solver(solver):
+    """PETSc options: names without '-', scalar values, known type names."""
+    for key, value in solver["petsc"].items():
+        path = f"solver.petsc.{key}"
+        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", key):
+            hint = " (without the leading '-')" if key.startswith("-") else ""
+            _fail(path, f"expected a PETSc option name{hint}")
+        if not (isinstance(value, (str, bool)) or _finite(value)):
+            _fail(path, f"expected a string, a finite number or true/false, found {_describe(value)}")
+        types = _petsc_types().get(key)
+        if types is not None and value not in types:
+            close = difflib.get_close_matches(str(value), sorted(types), n=1)
+            hint = f"; did you mean '{close[0]}'?" if close else ""
+            _fail(path, f"expected a PETSc {key.replace('_', ' ')}, found {_describe(value)}{hint}")
+    petsc = solver["petsc"]
+    if petsc.get("pc_type") in ("ilu", "icc") and petsc.get("pc_factor_mat_solver_type", "mumps") == "mumps":
+        _fail("solver.petsc.pc_type", f"{petsc['pc_type']!r} needs pc_factor_mat_solver_type = \"petsc\" "
+              "(the default, mumps, has no incomplete factorisations)")
+
+
+_PETSC_TYPES = None
+
+
+def _petsc_types():
+    """Known values of the PETSc options that select a type."""
+    global _PETSC_TYPES
+    if _PETSC_TYPES is None:
+        try:
+            from petsc4py import PETSc
+        except ImportError:  # pragma: no cover - petsc4py is a dependency
+            _PETSC_TYPES = {}
+            return _PETSC_TYPES
+
+        def names(cls):
+            return {v for k, v in vars(cls).items() if not k.startswith("_") and isinstance(v, str)}
+
+        _PETSC_TYPES = {
+            "ksp_type": names(PETSc.KSP.Type), "pc_type": names(PETSc.PC.Type),
+            "snes_type": names(PETSc.SNES.Type), "pc_factor_mat_solver_type": names(PETSc.Mat.SolverType),
+            "snes_linesearch_type": {"basic", "bt", "l2", "cp", "nleqerr", "shell"},
+        }
+    return _PETSC_TYPES
+
+
 def _check_consistency(scene, base_dir):
     mesh = scene["mesh"]
     if mesh["builder"] == "file":
@@ -190,36 +473,52 @@ def _check_consistency(scene, base_dir):
         f = Path(mesh["file"])
         if not f.is_absolute():
             f = (base_dir / f).resolve()
-        if not f.is_file():
+        if not _is_file(f, "mesh.file", "mesh file"):
             _fail("mesh.file", f"mesh file '{f}' does not exist")
         mesh["file"] = str(f)
     elif mesh["file"]:
         _fail("mesh.file", 'given, but mesh.builder is not "file"')
-    law = scene["material"]["law"]
-    if law.startswith("python:") and law.count(":") == 2:
-        _, path, func = law.split(":")
-        if not Path(path).is_absolute():
-            scene["material"]["law"] = f"python:{(base_dir / path).resolve()}:{func}"
+    _check_mesh(mesh)
+    _check_law(scene["material"], base_dir)
+    _check_parameters(scene["material"], scene["discretisation"]["formulation"])
+    _check_discretisation(scene)
+    _check_surfaces(scene)
+    _check_solver(scene["solver"])
     steps = scene["steps"]
     if steps["min"] > steps["initial"]:
         _fail("steps.min", f"must not exceed steps.initial ({steps['initial']}), found {steps['min']}")
     names = [c["name"] for c in scene["contact"]]
     for i, c in enumerate(scene["contact"]):
+        if not c["name"]:
+            _fail(f"contact[{i}].name", "expected a non-empty name (it names the CSV columns)")
         if names.count(c["name"]) > 1:
-            _fail(f"contact[{i}].name", f"duplicate contact name {c['name']!r}")
+            _fail(f"contact[{i}].name", f"duplicate contact name {_printable(repr(c['name']), 60)}")
         if c["obstacle"] == "box" and not all(l < h for l, h in zip(c["lo"], c["hi"])):
             _fail(f"contact[{i}].hi", f"box needs lo < hi in every coordinate, found lo={c['lo']} hi={c['hi']}")
+        if c["obstacle"] == "box":
+            # lo + λ motion < hi + λ motion must still hold in floating point
+            reach = max(abs(v + f * m) for f in (0.0, 1.0) for corner in (c["lo"], c["hi"])
+                        for v, m in zip(corner, c["motion"]))
+            if min(h - l for l, h in zip(c["lo"], c["hi"])) < 1e-9 * reach:
+                _fail(f"contact[{i}].hi", f"box sides must be at least 1e-9 × the largest coordinate the box "
+                      f"reaches ({reach:g}, with its motion), found lo={c['lo']} hi={c['hi']}")
         if c["mu"] != 0.0:
             _fail(f"contact[{i}].mu", f"friction (mu > 0) is not implemented yet; found {c['mu']}")
     for name, point in scene["output"]["probes"].items():
-        if not _vec3(point):
-            _fail(f"output.probes.{name}", f"expected a list of three numbers, found {_describe(point)}")
+        if not _finite_vec3(point):
+            _fail(f"output.probes.{name}", f"expected a list of three finite numbers, found {_describe(point)}")
+        scene["output"]["probes"][name] = [float(v) for v in point]
+        _check_probe_in_body(f"output.probes.{name}", scene["output"]["probes"][name], mesh)
     if steps["control"] != "load":
         if steps["stop_probe"] not in scene["output"]["probes"]:
             _fail("steps.stop_probe", f"{steps['control']} control needs a probe of output.probes "
-                  f"(found {steps['stop_probe']!r}; probes: {', '.join(scene['output']['probes']) or 'none'})")
+                  f"(found {_printable(repr(steps['stop_probe']), 60)}; probes: "
+                  f"{_printable(', '.join(scene['output']['probes']) or 'none', 200)})")
         if not scene["pressure"]:
             _fail("steps.control", f"{steps['control']} control needs a load: a [[pressure]] entry")
+        if not any(p["value"] != 0 for p in scene["pressure"]):
+            _fail("pressure[0].value", f"{steps['control']} control needs a non-zero load, found "
+                  f"{', '.join(str(p['value']) for p in scene['pressure'])}")
         if any(any(c["motion"]) for c in scene["contact"]):
             _fail("steps.control", f"{steps['control']} control with moving obstacles is not supported yet")
     for i, bc in enumerate(scene["bc"]):
@@ -238,21 +537,39 @@ def parse_value(text):
 def apply_override(data, assignment):
     """Apply ``key.path=value`` (array entries as ``contact.0.eps_n``)."""
     if "=" not in assignment:
-        raise SceneError(f"--set {assignment!r}: expected key=value")
+        raise SceneError(f"--set {_printable(repr(assignment), 80)}: expected key=value")
     path, text = assignment.split("=", 1)
-    keys = path.strip().split(".")
+    path = path.strip()
+    keys = path.split(".")
+    shown = _printable(path, 80)
+    if not all(keys):
+        raise SceneError(f"--set {shown}: empty key in the key path")
     node = data
     for i, k in enumerate(keys[:-1]):
+        where = ".".join(keys[:i]) or "the scene"
         if isinstance(node, list):
             if not k.isdigit() or int(k) >= len(node):
-                raise SceneError(f"--set {path}: '{k}' is not an index of '{'.'.join(keys[:i])}' (0..{len(node) - 1})")
+                valid = f"0..{len(node) - 1}" if node else "it is empty"
+                raise SceneError(f"--set {shown}: '{_printable(k, 40)}' is not an index of '{where}' ({valid})")
             node = node[int(k)]
-        else:
+        elif isinstance(node, dict):
             node = node.setdefault(k, {})
+        else:
+            raise SceneError(f"--set {shown}: '{where}' is {_describe(node)}, not a table")
     last = keys[-1]
+    value = parse_value(text.strip())
     if isinstance(node, list):
-        raise SceneError(f"--set {path}: cannot assign a whole array entry")
-    node[last] = parse_value(text.strip())
+        if not last.isdigit() or int(last) >= len(node):
+            valid = f"0..{len(node) - 1}" if node else "it is empty"
+            raise SceneError(f"--set {shown}: '{_printable(last, 40)}' is not an index of "
+                             f"'{'.'.join(keys[:-1])}' ({valid})")
+        if isinstance(node[int(last)], dict):
+            raise SceneError(f"--set {shown}: cannot assign a whole array entry")
+        node[int(last)] = value
+    elif isinstance(node, dict):
+        node[last] = value
+    else:
+        raise SceneError(f"--set {shown}: '{'.'.join(keys[:-1])}' is {_describe(node)}, not a table")
 
 
 def load(source, overrides=(), base_dir=None):
@@ -262,12 +579,19 @@ def load(source, overrides=(), base_dir=None):
         base_dir = Path(base_dir or ".")
     else:
         path = Path(source)
-        if not path.is_file():
-            raise SceneError(f"scene file '{path}' does not exist")
         try:
-            data = tomllib.loads(path.read_text())
+            exists = path.is_file()
+        except (OSError, ValueError) as err:
+            raise SceneError(f"scene file '{_printable(path, 200)}' cannot be looked up: "
+                             f"{_printable(err, 120)}") from None
+        if not exists:
+            raise SceneError(f"scene file '{_printable(path, 200)}' does not exist")
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
         except tomllib.TOMLDecodeError as err:
             raise SceneError(f"scene file '{path}' is not valid TOML: {err}") from None
+        except UnicodeDecodeError as err:
+            raise SceneError(f"scene file '{path}' is not UTF-8 text: {err}") from None
         base_dir = Path(base_dir or path.parent)
     for assignment in overrides:
         apply_override(data, assignment)

@@ -398,6 +398,10 @@ class Simulation:
                 self.set_load_factor(0.0)
                 bordered.assemble(x)
                 size = st["initial"] * bordered.tangent_direction().norm()
+                if not size > 0.0:
+                    raise StepFailure("arc length cannot start: the [[pressure]] loads do no work on the free "
+                                      "degrees of freedom (their load vector is zero once the boundary "
+                                      "conditions are applied)")
             else:
                 size = state["size0"]
             constraint = ArcLengthConstraint(size)
