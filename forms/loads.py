@@ -1,4 +1,5 @@
-"""External loads as residual contributions (R = δΠ_int − δW_ext).
+"""External loads as residual contributions (R = δΠ_int − δW_ext), each per
+unit load factor: the simulation multiplies them by λ.
 
 Follower pressure p on a surface of the deformed body: the traction in the
 current configuration is t = −p n (p > 0 pushes against the body's outward
@@ -15,3 +16,10 @@ def follower_pressure(u, v, p, ds):
     F = ufl.Identity(dim) + ufl.grad(u)
     N = ufl.FacetNormal(ds.ufl_domain())
     return p * ufl.det(F) * ufl.dot(ufl.inv(F).T * N, v) * ds
+
+
+def dead_load(v, value, measure):
+    """Residual term of a dead load: a traction per unit reference area (on a
+    facet measure) or a body force per unit reference volume (on dx), of
+    fixed direction and size: −∫ value · v."""
+    return -ufl.dot(ufl.as_vector([float(c) for c in value]), v) * measure

@@ -40,7 +40,7 @@ def test_no_contact_pairs_no_contact_code(out_dir):
         "mesh.n=2", "mesh.m=1", f"output.dir={out_dir}", "output.xdmf=false"])
     sc["contact"] = []
     sc["pressure"] = [{"surface": "zmax", "value": 0.01}]
-    sc["bc"].append({"surface": "zmin", "fix": ["z"]})
+    sc["bc"].append({"surface": "zmin", "fix": ["z"], "motion": [0.0, 0.0, 0.0]})
     sim = Simulation(sc, MPI.COMM_WORLD, log=quiet)
     sim.run()
     assert sim.contacts == [] and "contact" not in sim.timers.calls

@@ -63,12 +63,12 @@ def locate_block_dofs(V, facets):
     return fem.locate_dofs_topological(V, tdim - 1, facets)
 
 
-def dirichlet_component(V, component, facets):
-    """Homogeneous condition u_component = 0 on the facets."""
+def dirichlet_component(V, component, facets, value=None):
+    """Condition u_component = value (a Constant, or 0) on the facets."""
     tdim = V.mesh.topology.dim
     Vc = V.sub(component)
     dofs = fem.locate_dofs_topological(Vc, tdim - 1, facets)
-    return fem.dirichletbc(PETSc.ScalarType(0), dofs, Vc)
+    return fem.dirichletbc(value if value is not None else PETSc.ScalarType(0), dofs, Vc)
 
 
 def bc_dofs(bc):

@@ -144,9 +144,17 @@ SCHEMA = {
         "surface": Key("string", REQUIRED),
         "value": Key("number", REQUIRED, MAGNITUDE),
     }],
+    "traction": [{
+        "surface": Key("string", REQUIRED),
+        "value": Key("vector", REQUIRED, COORDINATES),
+    }],
+    "body_force": [{
+        "value": Key("vector", REQUIRED, COORDINATES),
+    }],
     "bc": [{
         "surface": Key("string", REQUIRED),
         "fix": Key("strings", REQUIRED, AXES),
+        "motion": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
     }],
     "contact": [{
         "name": Key("string", REQUIRED),
@@ -396,7 +404,7 @@ def _check_surfaces(scene):
     surfaces = BUILDER_SURFACES.get(scene["mesh"]["builder"])
     if surfaces is None:
         return  # a mesh file: its surfaces are known once it is read
-    for section in ("bc", "pressure", "contact"):
+    for section in ("bc", "pressure", "traction", "contact"):
         for i, entry in enumerate(scene[section]):
             name = entry["surface"]
             if name not in surfaces:
@@ -514,16 +522,25 @@ def _check_consistency(scene, base_dir):
             _fail("steps.stop_probe", f"{steps['control']} control needs a probe of output.probes "
                   f"(found {_printable(repr(steps['stop_probe']), 60)}; probes: "
                   f"{_printable(', '.join(scene['output']['probes']) or 'none', 200)})")
-        if not scene["pressure"]:
-            _fail("steps.control", f"{steps['control']} control needs a load: a [[pressure]] entry")
-        if not any(p["value"] != 0 for p in scene["pressure"]):
-            _fail("pressure[0].value", f"{steps['control']} control needs a non-zero load, found "
-                  f"{', '.join(str(p['value']) for p in scene['pressure'])}")
+        loads = ([p["value"] != 0 for p in scene["pressure"]] + [any(t["value"]) for t in scene["traction"]]
+                 + [any(b["value"]) for b in scene["body_force"]])
+        if not loads:
+            _fail("steps.control", f"{steps['control']} control needs a load: a [[pressure]], [[traction]] "
+                  "or [[body_force]] entry")
+        if not any(loads):
+            first = next(f"{s}[0].value" for s in ("pressure", "traction", "body_force") if scene[s])
+            _fail(first, f"{steps['control']} control needs a non-zero load, found only zero loads")
         if any(any(c["motion"]) for c in scene["contact"]):
             _fail("steps.control", f"{steps['control']} control with moving obstacles is not supported yet")
+        if any(any(bc["motion"]) for bc in scene["bc"]):
+            _fail("steps.control", f"{steps['control']} control with prescribed motion is not supported yet")
     for i, bc in enumerate(scene["bc"]):
         if len(set(bc["fix"])) != len(bc["fix"]):
             _fail(f"bc[{i}].fix", f"repeated axis in {bc['fix']}")
+        free_moving = [a for a, m in zip("xyz", bc["motion"]) if m != 0 and a not in bc["fix"]]
+        if free_moving:
+            _fail(f"bc[{i}].motion", f"moves {', '.join(free_moving)}, which bc[{i}].fix does not hold "
+                  f"(fix = {bc['fix']})")
 
 
 def parse_value(text):

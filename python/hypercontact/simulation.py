@@ -119,7 +119,7 @@ class Simulation:
         self.body = self._build_body(sc["mesh"])
         R, J, u_unknown, v_unknown, mat_desc, self.stress = self._build_volume(law)
         self.bcs, constrained = self._build_constraints()
-        R, J = self._add_pressures(R, J, u_unknown, v_unknown)
+        R, J = self._add_loads(R, J, u_unknown, v_unknown)
         self.contacts = [RigidContact(c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"),
                                       constrained) for i, c in enumerate(sc["contact"])]
         size = self.comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
@@ -129,10 +129,13 @@ class Simulation:
         self.bordered = None  # built by the continuation driver only
         self.active_sets, self.update_norms = [], []
         n_rigid, n_p = len(self.contacts), len(sc["pressure"])
+        n_t, n_b, n_m = len(sc["traction"]), len(sc["body_force"]), len(self._bc_motion)
         self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
                                    if n_rigid else "no contact")]
-        if n_p:
-            self.effects.append(f"{n_p} follower pressure{'s' if n_p > 1 else ''}")
+        for n, what in [(n_p, "follower pressure"), (n_t, "traction"), (n_b, "body force"),
+                        (n_m, "prescribed displacement")]:
+            if n:
+                self.effects.append(f"{n} {what}{'s' if n > 1 else ''}")
         self.effects.append({"load": "load control", "arclength": "arc-length continuation",
                              "displacement": "displacement control"}[sc["steps"]["control"]])
 
@@ -200,28 +203,38 @@ class Simulation:
         return R, J, self.u, ufl.TestFunction(self.V), desc, first_piola_stress(psi, **params)
 
     def _build_constraints(self):
-        """Dirichlet conditions, and the mask of constrained local dofs."""
+        """Dirichlet conditions u_a = λ × motion_a on the fixed components,
+        and the mask of constrained local dofs."""
         W = self.w.function_space
         displacement_space = W.sub(0) if self._u_dofs is not None else W
-        bcs = []
+        bcs, self._bc_motion = [], []
         for i, bc in enumerate(self.scene["bc"]):
             facets = dfx.facets_with_tag(self.body.facet_tags, self._tag(bc["surface"], f"bc[{i}].surface"))
-            bcs += [dfx.dirichlet_component(displacement_space, AXIS[a], facets) for a in bc["fix"]]
+            for a in bc["fix"]:
+                value = dfx.constant(self.body.mesh, 0.0)
+                bcs.append(dfx.dirichlet_component(displacement_space, AXIS[a], facets, value))
+                if bc["motion"][AXIS[a]] != 0.0:
+                    self._bc_motion.append((value, bc["motion"][AXIS[a]]))
         constrained = np.zeros(self.w.x.array.size, dtype=bool)
         for bc in bcs:
             constrained[dfx.bc_dofs(bc)] = True
         return bcs, constrained
 
-    def _add_pressures(self, R, J, u, v):
-        """Follower pressures p = λ × value: residual terms, and q = ∂R/∂λ
-        (kept for continuation)."""
+    def _add_loads(self, R, J, u, v):
+        """Loads proportional to λ: follower pressures, dead tractions and body
+        forces; their residual terms, and q = ∂R/∂λ (kept for continuation)."""
+        sc = self.scene
         self.load_factor = dfx.constant(self.body.mesh, 0.0)
+        qdeg = sc["discretisation"]["quadrature_degree"]
+        ds = dfx.facet_integration_measure(self.body.mesh, self.body.facet_tags, qdeg)
+        terms = [loads.follower_pressure(u, v, pr["value"], ds(self._tag(pr["surface"], f"pressure[{i}].surface")))
+                 for i, pr in enumerate(sc["pressure"])]
+        terms += [loads.dead_load(v, tr["value"], ds(self._tag(tr["surface"], f"traction[{i}].surface")))
+                  for i, tr in enumerate(sc["traction"])]
+        dx = ufl.dx(domain=self.body.mesh, metadata={"quadrature_degree": qdeg})
+        terms += [loads.dead_load(v, bf["value"], dx) for bf in sc["body_force"]]
         self.q_form = None
-        ds = dfx.facet_integration_measure(self.body.mesh, self.body.facet_tags,
-                                           self.scene["discretisation"]["quadrature_degree"])
-        for i, pr in enumerate(self.scene["pressure"]):
-            surface = ds(self._tag(pr["surface"], f"pressure[{i}].surface"))
-            term = loads.follower_pressure(u, v, pr["value"], surface)
+        for term in terms:
             self.q_form = term if self.q_form is None else self.q_form + term
         if self.q_form is None:
             return R, J
@@ -264,6 +277,8 @@ class Simulation:
 
     def set_load_factor(self, lam):
         self.load_factor.value = lam
+        for value, motion in self._bc_motion:
+            value.value = lam * motion
         for c in self.contacts:
             c.set_load_factor(lam)
 
