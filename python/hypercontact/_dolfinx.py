@@ -37,8 +37,6 @@ def collapse(subspace):
     return space, np.asarray(parent_dofs, dtype=np.int32)
 
 
-def scalar_space(mesh, degree):
-    return fem.FunctionSpace(mesh, ("Lagrange", int(degree)))
 
 
 def compile_form(form):
@@ -57,10 +55,6 @@ def facets_with_tag(facet_tags, tag):
     return facet_tags.indices[facet_tags.values == tag]
 
 
-def locate_block_dofs(V, facets):
-    """Block (node) indices of V's dofs on the given facets, process-local."""
-    tdim = V.mesh.topology.dim
-    return fem.locate_dofs_topological(V, tdim - 1, facets)
 
 
 def dirichlet_component(V, component, facets, value=None):
@@ -165,8 +159,6 @@ def update_ghosts(u):
     u.x.scatter_forward()
 
 
-def interpolate_constant_vector(u, value):
-    u.interpolate(lambda x: np.tile(np.asarray(value, dtype=float)[:, None], (1, x.shape[1])))
 
 
 class XDMFWriter:
