@@ -41,7 +41,7 @@ def test_ctrl_c_stops_cleanly_and_resume_completes(tmp_path):
     """SIGINT after the first converged step: exit 130, status 'interrupted',
     the converged steps on disk; --resume then completes the run."""
     args = CLI + ["run", str(ROOT / "scenes" / "sphere.toml"), "--out", str(tmp_path),
-                  "--set", "mesh.n=4", "--set", "mesh.m=1", "--set", "steps.stop_value=60"]
+                  "--set", "mesh.n=4", "--set", "mesh.m=1", "--set", "steps.stop_value=85", "--set", "steps.max=0.05"]
     proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     csv = tmp_path / "curves.csv"
     deadline = time.time() + 300
