@@ -5,6 +5,7 @@ void declare_obstacle(pybind11::module_& m);
 void declare_normal_penalty(pybind11::module_& m);
 void declare_nodal_area(pybind11::module_& m);
 void declare_assemble_rigid(pybind11::module_& m);
+void declare_assemble_friction(pybind11::module_& m);
 }  // namespace hypercontact::python
 
 PYBIND11_MODULE(_cpp, m) {
@@ -13,4 +14,5 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_normal_penalty(m);
   hypercontact::python::declare_nodal_area(m);
   hypercontact::python::declare_assemble_rigid(m);
+  hypercontact::python::declare_assemble_friction(m);
 }

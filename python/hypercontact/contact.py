@@ -93,5 +93,9 @@ class RigidContact:
         """Total force the obstacle exerts on the body (summed over ranks)."""
         return self.comm.allreduce(np.asarray(self.evaluate(u).force), op=MPI.SUM)
 
+    def commit(self, u):
+        """Frictionless contact has no history."""
+        return None
+
     def num_closed(self, u):
         return self.comm.allreduce(int(self.evaluate(u).num_closed), op=MPI.SUM)

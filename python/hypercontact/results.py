@@ -128,6 +128,8 @@ class ResultsWriter:
         for c in contacts:
             self.columns += [f"{c.name}_displacement"] + [f"{c.name}_f{a}" for a in "xyz"]
             self.columns += [f"{c.name}_closed_nodes"]
+            if hasattr(c, "dissipation"):  # frictional: accumulated frictional dissipation (N mm)
+                self.columns += [f"{c.name}_dissipation"]
         for name in probes:
             self.columns += [f"{name}_u{a}" for a in "xyz"]
         self.pressures = {f"pressure_{p['surface']}": p["value"] for p in scene["pressure"]}
@@ -152,6 +154,8 @@ class ResultsWriter:
             for a, f in zip("xyz", force):
                 row[f"{c.name}_f{a}"] = float(f)
             row[f"{c.name}_closed_nodes"] = c.num_closed(self.u)
+            if hasattr(c, "dissipation"):
+                row[f"{c.name}_dissipation"] = self.factor * c.dissipation
         for name, probe in self.probes.items():
             for a, value in zip("xyz", probe.value(self.u)):
                 row[f"{name}_u{a}"] = float(value)

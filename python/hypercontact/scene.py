@@ -167,7 +167,9 @@ SCHEMA = {
         "hi": Key("vector", [1.0, 1.0, 1.0], COORDINATES),
         "motion": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "eps_n": Key("number", REQUIRED, POSITIVE, (lambda x: 1e-100 <= x <= 1e100, "from 1e-100 to 1e+100")),
-        "mu": Key("number", 0.0, NON_NEGATIVE),
+        "mu": Key("number", 0.0, NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")),
+        "eps_t": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
+                                                   "0 (= eps_n) or from 1e-100 to 1e+100")),
     }],
     "steps": {
         "control": Key("string", "load", (lambda x: x in ("load", "arclength", "displacement"),
@@ -510,8 +512,6 @@ def _check_consistency(scene, base_dir):
             if min(h - l for l, h in zip(c["lo"], c["hi"])) < 1e-9 * reach:
                 _fail(f"contact[{i}].hi", f"box sides must be at least 1e-9 × the largest coordinate the box "
                       f"reaches ({reach:g}, with its motion), found lo={c['lo']} hi={c['hi']}")
-        if c["mu"] != 0.0:
-            _fail(f"contact[{i}].mu", f"friction (mu > 0) is not implemented yet; found {c['mu']}")
     for name, point in scene["output"]["probes"].items():
         if not _finite_vec3(point):
             _fail(f"output.probes.{name}", f"expected a list of three finite numbers, found {_describe(point)}")

@@ -13,6 +13,7 @@ from . import _dolfinx as dfx
 from . import geometry
 from .checkpoint import Checkpoint
 from .contact import RigidContact
+from .friction import FrictionalRigidContact
 from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
 from .continuation import step as continuation_step
 from .forms import loads, materials, volume
@@ -120,8 +121,9 @@ class Simulation:
         R, J, u_unknown, v_unknown, mat_desc, self.stress = self._build_volume(law)
         self.bcs, constrained = self._build_constraints()
         R, J = self._add_loads(R, J, u_unknown, v_unknown)
-        self.contacts = [RigidContact(c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"),
-                                      constrained) for i, c in enumerate(sc["contact"])]
+        self.contacts = [(FrictionalRigidContact if c["mu"] > 0 else RigidContact)(
+            c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"), constrained)
+            for i, c in enumerate(sc["contact"])]
         size = self.comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in sc["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
@@ -130,7 +132,9 @@ class Simulation:
         self.active_sets, self.update_norms = [], []
         n_rigid, n_p = len(self.contacts), len(sc["pressure"])
         n_t, n_b, n_m = len(sc["traction"]), len(sc["body_force"]), len(self._bc_motion)
-        self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} (frictionless)"
+        mus = sorted({c["mu"] for c in sc["contact"] if c["mu"] > 0})
+        friction = f"Coulomb friction μ = {', '.join(f'{m:g}' for m in mus)}" if mus else "frictionless"
+        self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})"
                                    if n_rigid else "no contact")]
         for n, what in [(n_p, "follower pressure"), (n_t, "traction"), (n_b, "body force"),
                         (n_m, "prescribed displacement")]:
@@ -262,7 +266,13 @@ class Simulation:
     def _save_checkpoint(self, writer, controller, **arrays):
         """The state after a converged step: solution, step controller, results so far."""
         with self.timers("output"):
-            state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points}
+            friction = {c.name: {"lam_committed": c.lam_committed, "dissipation": c.dissipation}
+                        for c in self.contacts if isinstance(c, FrictionalRigidContact)}
+            for c in self.contacts:
+                if isinstance(c, FrictionalRigidContact):
+                    arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"] = c.xi, c.t_old
+            state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
+                     "friction": friction}
             self.checkpoint.save(state, w=self.w.x.array, **arrays)
 
     def sync_displacement(self):
@@ -317,6 +327,11 @@ class Simulation:
         if state is not None:
             self.w.x.array[:] = arrays["w"]
             self.sync_displacement()
+            for c in self.contacts:
+                if isinstance(c, FrictionalRigidContact):
+                    c.xi, c.t_old = arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"]
+                    c.lam_committed = state["friction"][c.name]["lam_committed"]
+                    c.dissipation = state["friction"][c.name]["dissipation"]
         PETSc.Log.begin()
         events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         t0 = {name: e.getPerfInfo()["time"] for name, e in events.items()}
@@ -376,6 +391,8 @@ class Simulation:
                 lam += dlam
                 self._lam = lam
                 cuts = 0
+                for c in self.contacts:
+                    c.commit(self.u)
                 u_saved[:] = self.w.x.array
                 with self.timers("output"):
                     row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
@@ -462,6 +479,8 @@ class Simulation:
             x.copy(self.w.vector)
             dfx.update_ghosts(self.w)
             self.sync_displacement()
+            for c in self.contacts:
+                c.commit(self.u)
             if last_dlam is not None and dlam * last_dlam < 0:
                 writer.limit_points.append({"after_step": len(writer.steps), "load_factor": lam - dlam})
                 self.log(f"   limit point: the load factor turned at λ ≈ {lam - dlam:.6g}")

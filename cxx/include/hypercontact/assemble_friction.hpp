@@ -1,0 +1,40 @@
+// Assembly of rigid-obstacle Coulomb friction into PETSc objects (with assemble_rigid, the only
+// PETSc users).
+#pragma once
+
+#include <petscmat.h>
+
+#include <cstdint>
+#include <hypercontact/coulomb_friction.hpp>
+#include <hypercontact/obstacle.hpp>
+#include <span>
+#include <vector>
+
+namespace hypercontact {
+
+/// Per-node and total output of one friction residual assembly (row-major n × 3 vectors).
+struct RigidFrictionState {
+  std::vector<double> traction;        ///< t_i, the next t_old when the step is committed
+  std::vector<double> slip_increment;  ///< Δs_i of this step
+  std::vector<double> dissipation;     ///< D_i = μ p_N |Δs_i| A_i of this step
+  std::vector<std::int8_t> state;      ///< StickSlip as 0 open, 1 stick, 2 slip
+  Eigen::Vector3d force;               ///< tangential force of the obstacle on the body, −Σ r_T
+};
+
+/// Adds r_T,i = A_i t_i (coulomb_friction) of every slave node into b[dofs(i, :)] (−1 skipped).
+/// xi_old, t_old: n × 3 history of the last converged step (xi_old already moved with the
+/// obstacle); other arguments as assemble_rigid_residual.
+RigidFrictionState assemble_rigid_friction_residual(
+    const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
+    double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
+    std::span<const std::int32_t> dofs, std::span<double> b);
+
+/// Adds K_T,i = ∂r_T,i/∂x_i (not symmetric in slip) with MatSetValuesLocal (ADD_VALUES; rows and
+/// columns of −1 dofs skipped). Arguments as assemble_rigid_friction_residual.
+void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const double> x,
+                                     std::span<const double> area, double eps_n, double eps_t,
+                                     double mu, std::span<const double> xi_old,
+                                     std::span<const double> t_old,
+                                     std::span<const std::int32_t> dofs, Mat A);
+
+}  // namespace hypercontact

@@ -1,0 +1,85 @@
+"""Coulomb friction on a rigid base: a block pressed down and dragged
+sideways by its top face. With a wide friction cone every node sticks; with
+μ = 0.3 every node slides, each with a tangential traction of exactly μ times
+its contact pressure (the slip direction is not only x: the compressed block
+also spreads sideways)."""
+import numpy as np
+import pytest
+from conftest import quiet
+from mpi4py import MPI
+
+from hypercontact import scene
+from hypercontact.friction import FrictionalRigidContact
+from hypercontact.simulation import Simulation
+
+MU = 0.3
+
+
+def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25)):
+    """Top face held and moved by (shift, 0, −0.1); bottom on a rigid base."""
+    data = {
+        "mesh": {"builder": "box", "size": [1.0, 1.0, 1.0], "n": 2, "m": 2},
+        "material": {"law": "mooney_rivlin", "parameters": {"alpha1": 0.1863, "alpha2": 0.0098, "K": 5.0}},
+        "bc": [{"surface": "zmax", "fix": ["x", "y", "z"], "motion": [shift, 0.0, -0.1]}],
+        "contact": [{"name": "base", "surface": "zmin", "obstacle": "plane", "eps_n": 100.0, "eps_t": 100.0,
+                     "mu": mu}],
+        "steps": {"initial": steps[0], "max": steps[1]},
+        "solver": {"rtol": 1e-12, "atol": 1e-12, "linesearch": "bt", "max_it": 40},
+        "output": {"dir": str(out), "xdmf": False},
+    }
+    sim = Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)
+    return sim, sim.run()
+
+
+@pytest.mark.mpi
+def test_wide_cone_sticks(out_dir):
+    mu = 5.0
+    sim, writer = dragged_block(out_dir, 0.002, mu=mu)
+    last = writer.steps[-1]
+    fx, fz = last["base_fx"], last["base_fz"]
+    assert fz > 0 and 0 < -fx < 0.5 * mu * fz  # holds the block back, well inside the cone
+    assert last["base_dissipation"] == pytest.approx(0.0, abs=1e-14)
+    (base,) = sim.contacts
+    state = base.committed
+    assert np.all(np.asarray(state.state) == 1)  # every node sticks
+
+
+@pytest.mark.mpi
+def test_large_drag_slides_at_mu_times_normal_force(out_dir):
+    sim, writer = dragged_block(out_dir, 0.3)
+    last = writer.steps[-1]
+    fx, fy, fz = last["base_fx"], last["base_fy"], last["base_fz"]
+    (base,) = sim.contacts
+    state = base.committed
+    assert np.all(np.asarray(state.state) == 2)  # every node slides
+    t = np.linalg.norm(np.asarray(state.traction), axis=1)
+    p = np.asarray(base.evaluate(sim.u).pressure)
+    assert np.allclose(t, MU * p, rtol=1e-9, atol=0)  # on the Coulomb cone, node by node
+    assert 0.9 * MU * fz < -fx < MU * fz and np.hypot(fx, fy) <= MU * fz * (1 + 1e-9)
+    # dissipation accumulates, never decreases, and is positive once sliding
+    d = [s["base_dissipation"] for s in writer.steps]
+    assert all(b >= a - 1e-14 for a, b in zip(d, d[1:])) and d[-1] > 0
+    # Newton still converges fast with the non-symmetric slip tangent
+    assert max(s["newton_iterations"] for s in writer.steps) <= 10
+
+
+@pytest.mark.mpi
+def test_zero_friction_builds_no_friction(out_dir):
+    sim, writer = dragged_block(out_dir, 0.3, mu=0.0)
+    assert not any(isinstance(c, FrictionalRigidContact) for c in sim.contacts)
+    assert "frictionless" in sim.effects[1]
+    assert writer.steps[-1]["base_fx"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_cut_back_leaves_the_history_as_if_never_failed(out_dir):
+    """One huge first step that fails and is cut back gives the same final
+    state as steps that never failed (the history is committed only after
+    converged steps)."""
+    sim_a, wa = dragged_block(out_dir / "a", 0.3, steps=(0.25, 0.25))
+    sim_b, wb = dragged_block(out_dir / "b", 0.3, steps=(1.0, 0.25))
+    # both end at λ = 1; paths differ, so compare the sliding force law, exact in both
+    for sim in (sim_a, sim_b):
+        (base,) = sim.contacts
+        t = np.linalg.norm(np.asarray(base.committed.traction), axis=1)
+        assert np.allclose(t, MU * np.asarray(base.evaluate(sim.u).pressure), rtol=1e-9, atol=0)
+    assert len(wb.steps) >= 1
