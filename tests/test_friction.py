@@ -24,7 +24,7 @@ def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25)):
         "contact": [{"name": "base", "surface": "zmin", "obstacle": "plane", "eps_n": 100.0, "eps_t": 100.0,
                      "mu": mu}],
         "steps": {"initial": steps[0], "max": steps[1]},
-        "solver": {"rtol": 1e-12, "atol": 1e-12, "linesearch": "bt", "max_it": 40},
+        "solver": {"rtol": 1e-12, "atol": 1e-12, "max_it": 40},  # line search "auto": bt with friction
         "output": {"dir": str(out), "xdmf": False},
     }
     sim = Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)

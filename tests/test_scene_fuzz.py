@@ -114,7 +114,7 @@ ENUMS = {
     "obstacle": ["plane", "box", "sphere"],
     "control": ["load", "arclength", "displacement", "force"],
     "stop_component": ["x", "y", "z", "w", "xy"],
-    "linesearch": ["basic", "bt", "l2", "cp", "nleqerr", "shell"],
+    "linesearch": ["auto", "basic", "bt", "l2", "cp", "nleqerr", "shell"],
     "i2": ["usual", "paper", "other"],
     "ksp_type": ["preonly", "gmres", "cg", "nonsense"],
     "pc_type": ["lu", "ilu", "none", "nonsense"],

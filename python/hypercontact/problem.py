@@ -63,14 +63,17 @@ def set_prefixed_options(prefix, options):
         opts[prefix + key] = value
 
 
-def make_snes(problem, comm, solver, prefix="hc_"):
+def make_snes(problem, comm, solver, prefix="hc_", frictional=False):
     """A newtonls SNES with MUMPS LU by default; solver["petsc"] options
-    (without prefix) override anything."""
+    (without prefix) override anything. Line search "auto": full Newton steps
+    ("basic"), except with friction, where the stick/slip switches make full
+    steps cycle and the backtracking "bt" converges."""
     snes = PETSc.SNES().create(comm)
     snes.setOptionsPrefix(prefix)
     defaults = {
         "snes_type": "newtonls",
-        "snes_linesearch_type": solver["linesearch"],
+        "snes_linesearch_type": (("bt" if frictional else "basic") if solver["linesearch"] == "auto"
+                                 else solver["linesearch"]),
         "ksp_type": "preonly",
         "pc_type": "lu",
         "pc_factor_mat_solver_type": "mumps",

@@ -190,7 +190,8 @@ SCHEMA = {
         "rtol": Key("number", 1e-10, POSITIVE, (lambda x: x < 1, "< 1")),
         "atol": Key("number", 1e-10, POSITIVE),
         "max_it": Key("integer", 25, (lambda x: 1 <= x <= 1000, "an integer from 1 to 1000")),
-        "linesearch": Key("string", "basic", (lambda x: x in ("basic", "bt", "l2", "cp"), "a PETSc SNES line search: basic, bt, l2 or cp")),
+        "linesearch": Key("string", "auto", (lambda x: x in ("auto", "basic", "bt", "l2", "cp"),
+                                             "auto or a PETSc SNES line search: basic, bt, l2 or cp")),
         "petsc": Key("table", {}),
     },
     "output": {

@@ -373,7 +373,8 @@ class Simulation:
     def _load_control(self, writer, split, out_dir, state=None):
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
-        self.snes = make_snes(self.problem, self.comm, self.scene["solver"])
+        self.snes = make_snes(self.problem, self.comm, self.scene["solver"],
+                              frictional=any(c["mu"] > 0 for c in self.scene["contact"]))
         self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0
