@@ -1,6 +1,5 @@
 """Dead tractions, body forces and prescribed displacements on a block in a
 homogeneous state, against closed forms and equilibrium."""
-import numpy as np
 import pytest
 from conftest import quiet
 from mpi4py import MPI
