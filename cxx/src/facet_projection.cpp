@@ -104,7 +104,7 @@ struct NewtonOutcome {
 
 /// Safeguarded Newton for min_ξ ½|x_s − x_M(ξ)|² from xi0 (coordinates relative to the centroid).
 NewtonOutcome newton(const NodeCoordinates& x, const Eigen::Vector3d& xs,
-                     const Eigen::Vector2d& xi0, double xi_tol) {
+                     const Eigen::Vector2d& xi0, double xi_tol, double L) {
   const int n = static_cast<int>(x.cols());
   const Eigen::Vector3d x12 = x * facet_shape_mixed_derivatives(n);
   const auto objective = [&](const Eigen::Vector2d& xi) {
@@ -120,7 +120,9 @@ NewtonOutcome newton(const NodeCoordinates& x, const Eigen::Vector3d& xs,
     H(1, 0) = H(0, 1);
     const double trace = H.trace(), det = H.determinant();
     const bool positive_definite = trace > 0 && det > 1e-14 * trace * trace;
-    if (grad.isZero(0.0)) {
+    // Stationary to rounding (also ends the slow convergence to a degenerate minimum, where
+    // H is singular).
+    if (grad.norm() <= 1e-13 * L * (L + r.norm())) {
       const bool semi_definite = trace >= 0 && det >= -1e-12 * trace * trace;
       return {xi, semi_definite, true, it - 1};
     }
@@ -250,7 +252,7 @@ FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vec
   bool have_face = false;
   Candidate face{};
   for (int s = 0; s < num_starts; ++s) {
-    const NewtonOutcome o = newton(x, xs, starts[s], xi_tol);
+    const NewtonOutcome o = newton(x, xs, starts[s], xi_tol, L);
     iterations += o.iterations;
     converged = converged && o.concluded;
     if (!o.stationary || !inside(n, o.xi, inside_tol)) continue;

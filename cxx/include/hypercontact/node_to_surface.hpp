@@ -1,0 +1,91 @@
+// Frictionless normal penalty contact of a slave point against one facet of a deformable master
+// surface (SPEC §1–2): the paper's 5-node element (one slave node against a bilinear facet) and,
+// with the same code, Gauss-point-to-surface integration (x_s = Σ M_i x_i over a slave facet).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <hypercontact/facet_projection.hpp>
+#include <span>
+
+namespace hypercontact {
+
+/// Residual and tangent of one contact element, with its kinematics.
+struct SurfaceContact {
+  /// R = ∂W/∂x, 3 (ns + nm) entries: the ns slave nodes first, then the nm master nodes, each as
+  /// (x, y, z). Added to the internal-force residual.
+  Eigen::VectorXd residual;
+  Eigen::MatrixXd tangent;  ///< K = ∂R/∂x, same ordering, symmetric
+  double gap;               ///< g = (x_s − x_M(ξ*)) · n
+  double pressure;          ///< p_N = ε_N ⟨−g⟩
+  Eigen::Vector3d normal;   ///< n: unit outward facet normal at ξ*
+  Eigen::Vector2d xi;       ///< ξ*
+  Feature feature;          ///< as the projection
+  int local_index;          ///< as the projection
+  bool closed;              ///< g ≤ 0
+};
+
+/// Contact element of a slave point x_s = Σ_i M_i x_i (i over the ns columns of `slave`; one
+/// slave node: ns = 1, M = 1; a Gauss point of a slave facet: the facet's shape functions at the
+/// point) against the master facet with nodes `master` (3 × 4 or 3 × 3, conventions of
+/// facet_projection.hpp), weight w ≥ 0 (the slave point's reference area) and penalty ε_N > 0.
+///
+/// With x the stacked 3 (ns + nm) coordinates and P(ξ) = [M_1 I … M_ns I, −N_1 I … −N_nm I],
+/// r = x_s − x_M(ξ*) = P(ξ*) x and g = r·n (n the outward facet normal at ξ*):
+///   energy   W = w ε_N φ*(x) if g ≤ 0 (closed; g = 0 counts as closed), else W = 0, with
+///            φ*(x) = min_ξ ½ |P(ξ) x|² over the feature found by the projection: the face
+///            (ξ ∈ R² free), the line of edge k (ξ = ξ_k + t (ξ_{k+1} − ξ_k), t ∈ R free) or the
+///            vertex (ξ fixed). On the face r = g n, so W = ½ w ε_N g².
+///   residual R = ∂W/∂x = w ε_N Pᵀ r   (envelope theorem: ∂φ/∂ξ = 0 at ξ*),
+///   tangent  K = ∂R/∂x = w ε_N [Pᵀ P − B T (Tᵀ H T)⁻¹ Tᵀ Bᵀ],
+///            H = ∂²φ/∂ξ∂ξ: H_αβ = a_α·a_β − r·x_,αβ,  B = ∂²φ/∂x∂ξ: B_α = P_,αᵀ r − Pᵀ a_α,
+///            T = I (face), T = ξ_{k+1} − ξ_k (edge k: Tᵀ H T = |x_{k+1} − x_k|², the edge is
+///            straight), no correction at a vertex (K = w ε_N Pᵀ P).
+///   p_N = ε_N ⟨−g⟩; open (g > 0): R = 0, K = 0, p_N = 0.
+/// K is exact and symmetric, with every curvature term (warped facets, g ≠ 0).
+/// Off the face (Edge, Vertex) r is not along n: the force w ε_N |r| acts along r, and W jumps
+/// from ½ w ε_N |r|² to 0 where g changes sign with r ≠ 0.
+///
+/// `projection` must be project_to_facet(master, x_s) at the current coordinates.
+/// Throws std::invalid_argument if w < 0, ε_N ≤ 0, sizes are inconsistent (weights.size() ≠
+/// slave.cols() ≥ 1, master not 3 × 3 or 3 × 4), any input is not finite, the projection is
+/// inconsistent (local index out of range) or the facet is degenerate; std::runtime_error if
+/// the contact is closed at a face point where H is not positive definite (the slave point at a
+/// centre of curvature of the facet: the tangent does not exist). Never returns NaN.
+SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
+                               const NodeCoordinates& master, const FacetProjection& projection,
+                               double w, double eps_n);
+
+/// The same, projecting x_s onto the facet first (project_to_facet).
+SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
+                               const NodeCoordinates& master, double w, double eps_n);
+
+/// The element energy W defined above (projecting x_s onto the facet first).
+double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
+                              const NodeCoordinates& master, double w, double eps_n);
+
+/// The closest of several candidate facets to a slave point (narrow phase).
+struct ClosestFacet {
+  std::int32_t facet;          ///< the winning candidate: a row of `facets`
+  FacetProjection projection;  ///< project_to_facet onto that facet
+};
+
+/// Projects x_s onto every candidate facet and returns the closest.
+/// facets: num_facets × nodes_per_facet node indices, row-major (nodes_per_facet = 4 or 3, node
+///   order as facet_projection.hpp); coords: num_nodes × 3, row-major (current coordinates);
+///   candidates: rows of `facets` to try (e.g. from a broad phase), any order.
+/// Ties (distances within 1e-12 (L + d), L the longest edge of the facets compared, d the
+/// distance) go to Face over Edge over Vertex, then to the lower facet index.
+/// Throws std::invalid_argument if candidates is empty, nodes_per_facet is not 3 or 4, sizes
+/// are inconsistent, x_s is not finite or a candidate facet is degenerate (the message names
+/// it); std::out_of_range on a candidate or node index out of range.
+ClosestFacet closest_facet(const Eigen::Vector3d& x_s, std::span<const std::int32_t> candidates,
+                           std::span<const std::int32_t> facets, int nodes_per_facet,
+                           std::span<const double> coords);
+
+/// The nodes of row `facet` of `facets` as a 3 × nodes_per_facet matrix (arguments as in
+/// closest_facet; throws std::out_of_range on an index out of range).
+NodeCoordinates gather_facet(std::int32_t facet, std::span<const std::int32_t> facets,
+                             int nodes_per_facet, std::span<const double> coords);
+
+}  // namespace hypercontact

@@ -1,0 +1,466 @@
+// Node-to-surface normal penalty against a deformable master facet: the residual against central
+// finite differences of the energy and the tangent against central finite differences of the
+// residual, over every node of the element (slave and master), on flat and warped quadrilaterals
+// (face, edge, vertex), a Gauss-point slave, a triangle, near a centre of curvature; open contact;
+// the narrow phase over candidate facets; bad input.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <hypercontact/facet_projection.hpp>
+#include <hypercontact/node_to_surface.hpp>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "finite_difference.hpp"
+#include "surface_element_fd.hpp"
+
+namespace hypercontact {
+namespace {
+
+using test::fd_gradient_stacked;
+using test::fd_jacobian_stacked;
+using test::relative_error;
+using test::stack;
+using test::unstack;
+
+constexpr double w = 0.37;
+constexpr double eps_n = 250.0;
+
+const Eigen::Matrix3d rotation =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+const Eigen::Vector3d shift(1, 2, 3);
+
+/// Nodes given in a local frame, rotated and shifted so that nothing is axis-aligned.
+NodeCoordinates placed(std::initializer_list<Eigen::Vector3d> local) {
+  NodeCoordinates x(3, static_cast<Eigen::Index>(local.size()));
+  int j = 0;
+  for (const Eigen::Vector3d& p : local) x.col(j++) = rotation * p + shift;
+  return x;
+}
+
+const NodeCoordinates flat_quad = placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
+/// Non-planar: n · x_,12 ≈ 0.2, so the curvature term r·x_,12 of H matters when g ≠ 0.
+const NodeCoordinates warped_quad =
+    placed({{0, 0, 0.2}, {1.2, 0.1, -0.1}, {1.1, 0.9, 0.3}, {-0.1, 1, -0.2}});
+const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2, 1, -0.1}});
+
+const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
+
+Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
+  return m * facet_shape_functions(static_cast<int>(m.cols()), xi);
+}
+
+/// x_M(ξ) + g n(ξ): for small |g| its closest point is x_M(ξ), its gap g.
+Eigen::Vector3d point_at(const NodeCoordinates& m, const Eigen::Vector2d& xi, double gap) {
+  return surface_point(m, xi) + gap * facet_normal(m, xi);
+}
+
+NodeCoordinates single(const Eigen::Vector3d& x) { return x; }
+
+/// Outward unit normal, in the facet's tangent plane at ξ, of edge k.
+Eigen::Vector3d edge_outward(const NodeCoordinates& m, int k, const Eigen::Vector2d& xi) {
+  const int n = static_cast<int>(m.cols());
+  const Eigen::Vector3d e = m.col((k + 1) % n) - m.col(k);
+  return e.cross(facet_normal(m, xi)).normalized();
+}
+
+/// Element data and its checks against finite differences over all 3 (ns + nm) coordinates.
+struct Element {
+  NodeCoordinates slave;
+  Eigen::VectorXd weights;
+  NodeCoordinates master;
+
+  Eigen::VectorXd x() const { return stack({slave, master}); }
+  std::vector<NodeCoordinates> split(const Eigen::VectorXd& y) const {
+    return unstack(y, {slave, master});
+  }
+  double energy(const Eigen::VectorXd& y) const {
+    const auto s = split(y);
+    return node_to_surface_energy(s[0], weights, s[1], w, eps_n);
+  }
+  Eigen::VectorXd residual(const Eigen::VectorXd& y) const {
+    const auto s = split(y);
+    return node_to_surface(s[0], weights, s[1], w, eps_n).residual;
+  }
+  SurfaceContact evaluate() const { return node_to_surface(slave, weights, master, w, eps_n); }
+};
+
+/// Errors of R against FD of W and of K against FD of R.
+struct FdErrors {
+  double residual;
+  double tangent;
+};
+
+FdErrors fd_errors(const Element& e, const Eigen::MatrixXd& tangent) {
+  const Eigen::VectorXd x = e.x();
+  const SurfaceContact c = e.evaluate();
+  const Eigen::VectorXd dW =
+      fd_gradient_stacked([&](const Eigen::VectorXd& y) { return e.energy(y); }, x);
+  const Eigen::MatrixXd dR =
+      fd_jacobian_stacked([&](const Eigen::VectorXd& y) { return e.residual(y); }, x);
+  return {relative_error(dW, c.residual), relative_error(dR, tangent)};
+}
+
+/// Closed contact on the expected feature, exact residual and tangent, symmetric tangent.
+SurfaceContact expect_exact(const Element& e, Feature feature) {
+  const SurfaceContact c = e.evaluate();
+  EXPECT_EQ(c.feature, feature);
+  EXPECT_TRUE(c.closed);
+  EXPECT_LT(c.gap, 0);
+  EXPECT_TRUE(c.residual.allFinite() && c.tangent.allFinite());
+  const FdErrors err = fd_errors(e, c.tangent);
+  EXPECT_LE(err.residual, 1e-6);
+  EXPECT_LE(err.tangent, 1e-6);
+  EXPECT_EQ(c.tangent, c.tangent.transpose());
+  EXPECT_NEAR(c.pressure, -eps_n * c.gap, 1e-12 * eps_n);
+  return c;
+}
+
+/// P = [M_i I, −N_a I] at ξ, for the tests' own formulas.
+Eigen::MatrixXd P_matrix(const Element& e, const Eigen::Vector2d& xi) {
+  const int ns = static_cast<int>(e.slave.cols()), nm = static_cast<int>(e.master.cols());
+  const Eigen::VectorXd N = facet_shape_functions(nm, xi);
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3, 3 * (ns + nm));
+  for (int i = 0; i < ns; ++i) P.block(0, 3 * i, 3, 3) = e.weights[i] * Eigen::Matrix3d::Identity();
+  for (int a = 0; a < nm; ++a) P.block(0, 3 * (ns + a), 3, 3) = -N[a] * Eigen::Matrix3d::Identity();
+  return P;
+}
+
+TEST(NodeToSurface, FlatQuadFaceMatchesClosedForm) {
+  const Eigen::Vector2d xi(0.3, -0.2);
+  const double gap = -0.05;
+  const Element e{single(point_at(flat_quad, xi, gap)), one_node, flat_quad};
+  const SurfaceContact c = expect_exact(e, Feature::Face);
+  EXPECT_NEAR(c.gap, gap, 1e-14);
+  EXPECT_LE((c.xi - xi).norm(), 1e-12);
+  EXPECT_LE((c.normal - rotation.col(2)).norm(), 1e-14);
+  // R = w ε_N g [n; −N_a n].
+  const Eigen::VectorXd expected = w * eps_n * gap * P_matrix(e, xi).transpose() * c.normal;
+  EXPECT_LE(relative_error(c.residual, expected), 1e-12);
+  // Newton's equilibrium: the forces on the slave and on the master balance.
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 5; ++a) total += c.residual.segment<3>(3 * a);
+  EXPECT_LE(total.norm(), 1e-12 * c.residual.norm());
+}
+
+TEST(NodeToSurface, WarpedQuadCurvatureTermsAreNeeded) {
+  const Eigen::Vector2d xi(0.3, -0.2);
+  const Element e{single(point_at(warped_quad, xi, -0.08)), one_node, warped_quad};
+  const SurfaceContact c = expect_exact(e, Feature::Face);
+
+  // The same tangent without B H⁻¹ Bᵀ, and with H reduced to the metric a_α·a_β (no r·x_,αβ):
+  // both must fail the finite-difference test by far.
+  const Eigen::MatrixXd P = P_matrix(e, c.xi);
+  const Eigen::Matrix<double, 4, 2> dN = facet_shape_derivatives(4, c.xi);
+  const Eigen::Matrix<double, 3, 2> a = warped_quad * dN;
+  const Eigen::Vector3d r = P * e.x();
+  Eigen::MatrixXd B(15, 2);
+  for (int alpha = 0; alpha < 2; ++alpha) {
+    Eigen::MatrixXd P_alpha = Eigen::MatrixXd::Zero(3, 15);
+    for (int b = 0; b < 4; ++b)
+      P_alpha.block(0, 3 * (1 + b), 3, 3) = -dN(b, alpha) * Eigen::Matrix3d::Identity();
+    B.col(alpha) = P_alpha.transpose() * r - P.transpose() * a.col(alpha);
+  }
+  const Eigen::Matrix2d metric = a.transpose() * a;
+  Eigen::Matrix2d H = metric;
+  H(0, 1) = H(1, 0) = metric(0, 1) - r.dot(warped_quad * facet_shape_mixed_derivatives(4));
+  const Eigen::MatrixXd K_exact = w * eps_n * (P.transpose() * P - B * H.inverse() * B.transpose());
+  EXPECT_LE(relative_error(K_exact, c.tangent), 1e-12);  // the tests' formula is the kernel's
+
+  const Eigen::MatrixXd K_without_correction = w * eps_n * P.transpose() * P;
+  const Eigen::MatrixXd K_metric_only =
+      w * eps_n * (P.transpose() * P - B * metric.inverse() * B.transpose());
+  EXPECT_GT(fd_errors(e, K_without_correction).tangent, 1e-2);
+  EXPECT_GT(fd_errors(e, K_metric_only).tangent, 1e-3);
+}
+
+TEST(NodeToSurface, WarpedQuadAboveAndBelowSeveralPoints) {
+  for (const Eigen::Vector2d& xi :
+       {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(-0.7, 0.6), Eigen::Vector2d(0.8, 0.85)})
+    for (double gap : {-0.2, -0.01}) {
+      SCOPED_TRACE("xi = (" + std::to_string(xi[0]) + ", " + std::to_string(xi[1]) +
+                   "), g = " + std::to_string(gap));
+      const Element e{single(point_at(warped_quad, xi, gap)), one_node, warped_quad};
+      const SurfaceContact c = expect_exact(e, Feature::Face);
+      EXPECT_NEAR(c.gap, gap, 1e-12);
+    }
+}
+
+TEST(NodeToSurface, EdgeOfWarpedQuad) {
+  const int k = 1;  // node 1 → node 2, ξ1 = 1
+  const Eigen::Vector2d xi_edge(1.0, -0.2);
+  const Eigen::Vector3d x = surface_point(warped_quad, xi_edge) +
+                            0.15 * edge_outward(warped_quad, k, xi_edge) -
+                            0.1 * facet_normal(warped_quad, xi_edge);
+  const Element e{single(x), one_node, warped_quad};
+  const SurfaceContact c = expect_exact(e, Feature::Edge);
+  EXPECT_EQ(c.local_index, k);
+  EXPECT_EQ(c.xi[0], 1.0);
+  EXPECT_NEAR(c.gap, -0.1, 1e-12);
+  // Off the face the force acts along r, not n: |R_slave| = w ε_N |r| > p_N w.
+  EXPECT_NEAR(c.residual.head<3>().norm(), w * eps_n * std::hypot(0.15, 0.1), 1e-9);
+}
+
+TEST(NodeToSurface, VertexOfWarpedQuad) {
+  const int k = 2;
+  const Eigen::Vector2d xi_v = facet_vertex_xi(4, k);
+  const Eigen::Vector3d out =
+      edge_outward(warped_quad, 1, xi_v) + edge_outward(warped_quad, 2, xi_v);
+  const Eigen::Vector3d x =
+      warped_quad.col(k) + 0.1 * out.normalized() - 0.12 * facet_normal(warped_quad, xi_v);
+  const Element e{single(x), one_node, warped_quad};
+  const SurfaceContact c = expect_exact(e, Feature::Vertex);
+  EXPECT_EQ(c.local_index, k);
+  // At a vertex ξ* is fixed: K = w ε_N PᵀP.
+  const Eigen::MatrixXd P = P_matrix(e, xi_v);
+  EXPECT_LE(relative_error(c.tangent, w * eps_n * P.transpose() * P), 1e-14);
+}
+
+TEST(NodeToSurface, GaussPointOfASlaveFacet) {
+  // Slave quadrilateral below the warped master; the slave point is its Gauss point
+  // (−1/√3, 1/√3), M_i the bilinear shape functions there; all 4 + 4 nodes are unknowns.
+  const double g = 1 / std::sqrt(3.0);
+  const Eigen::VectorXd M = facet_shape_functions(4, Eigen::Vector2d(-g, g));
+  NodeCoordinates slave(3, 4);
+  slave << point_at(warped_quad, {-0.5, -0.4}, -0.03), point_at(warped_quad, {0.4, -0.6}, -0.06),
+      point_at(warped_quad, {0.5, 0.3}, 0.01), point_at(warped_quad, {-0.6, 0.5}, -0.09);
+  const Element e{slave, M, warped_quad};
+  const SurfaceContact c = expect_exact(e, Feature::Face);
+  EXPECT_EQ(c.residual.size(), 24);
+  // The slave forces are M_i times the force at the Gauss point.
+  for (int i = 0; i < 4; ++i)
+    EXPECT_LE((c.residual.segment<3>(3 * i) - M[i] * w * eps_n * c.gap * c.normal).norm(),
+              1e-12 * c.residual.norm());
+}
+
+TEST(NodeToSurface, TriangleMasterFaceAndEdge) {
+  const Element face{single(point_at(triangle, {0.3, 0.25}, -0.04)), one_node, triangle};
+  const SurfaceContact c = expect_exact(face, Feature::Face);
+  EXPECT_NEAR(c.gap, -0.04, 1e-14);
+  const Eigen::Vector2d on_edge(0.6, 0.4);  // edge 1: ξ1 + ξ2 = 1
+  const Eigen::Vector3d x =
+      surface_point(triangle, on_edge) + 0.1 * edge_outward(triangle, 1, on_edge) - 0.05 * c.normal;
+  const SurfaceContact edge = expect_exact(Element{single(x), one_node, triangle}, Feature::Edge);
+  EXPECT_EQ(edge.local_index, 1);
+  // Gauss point of a slave triangle against the triangle.
+  NodeCoordinates slave(3, 3);
+  slave << point_at(triangle, {0.1, 0.1}, -0.02), point_at(triangle, {0.6, 0.1}, -0.05),
+      point_at(triangle, {0.2, 0.6}, 0.01);
+  expect_exact(Element{slave, facet_shape_functions(3, {1.0 / 6, 2.0 / 3}), triangle},
+               Feature::Face);
+}
+
+TEST(NodeToSurface, CloseToACentreOfCurvatureAndAtIt) {
+  // Saddle z = ξ1 ξ2 with the nodes ordered so that n = −z at the centre: a point above it
+  // penetrates, and H = [[1, −h], [−h, 1]] at the centre for a point at height h.
+  const NodeCoordinates saddle = placed({{-1, 1, -1}, {1, 1, 1}, {1, -1, -1}, {-1, -1, 1}});
+  const Eigen::Vector3d up = rotation.col(2);
+  expect_exact(
+      Element{single(shift + rotation * Eigen::Vector3d(0.05, -0.03, 0.8)), one_node, saddle},
+      Feature::Face);
+  // h = 1: H singular at the centre, which is still the closest point (a degenerate minimum,
+  // F − F* ∝ |ξ|⁴): no tangent, no NaN.
+  const Element at_centre{single(shift + up), one_node, saddle};
+  const FacetProjection p = project_to_facet(saddle, shift + up);
+  ASSERT_EQ(p.feature, Feature::Face);
+  ASSERT_LE(p.xi.norm(), 1e-3);
+  FacetProjection exact = p;
+  exact.xi.setZero();
+  EXPECT_THROW(node_to_surface(at_centre.slave, one_node, saddle, exact, w, eps_n),
+               std::runtime_error);
+  try {  // with the projection found, whichever point of the flat minimum it is
+    const SurfaceContact c = at_centre.evaluate();
+    EXPECT_TRUE(c.residual.allFinite() && c.tangent.allFinite());
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("centre of curvature"), std::string::npos);
+  }
+  // The energy needs no tangent.
+  EXPECT_NEAR(node_to_surface_energy(at_centre.slave, one_node, saddle, w, eps_n), 0.5 * w * eps_n,
+              1e-12);
+}
+
+TEST(NodeToSurface, RandomWarpedQuadsAllFeatures) {
+  // Seeded random warped quadrilaterals and penetrating slave points over the face, beyond
+  // edges and corners; one slave node or a Gauss point of a random slave quadrilateral.
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int counts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(3 * u(rng), Eigen::Vector3d(u(rng), u(rng), 1).normalized())
+            .toRotationMatrix();
+    NodeCoordinates m(3, 4);
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector2d c = facet_vertex_xi(4, a);
+      m.col(a) = R * Eigen::Vector3d(c[0] + 0.3 * u(rng), c[1] + 0.3 * u(rng), 0.4 * u(rng));
+    }
+    const Eigen::Vector2d xi(1.4 * u(rng), 1.4 * u(rng));  // about half off the face
+    const Eigen::Vector2d clamped = xi.cwiseMax(-1).cwiseMin(1);
+    const Eigen::Vector3d n = facet_normal(m, clamped);
+    const Eigen::Vector3d base = surface_point(m, clamped) - (0.02 + 0.1 * (1 + u(rng))) * n;
+    const Eigen::Matrix<double, 3, 2> a = m * facet_shape_derivatives(4, clamped);
+    const Eigen::Vector3d x = base + a * (xi - clamped);
+    Element e{single(x), one_node, m};
+    if (trial % 3 == 0) {  // Gauss point of a slave quadrilateral around x
+      NodeCoordinates s(3, 4);
+      for (int i = 0; i < 4; ++i)
+        s.col(i) = x + 0.2 * Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
+      const Eigen::VectorXd M = facet_shape_functions(4, Eigen::Vector2d(0.57735, -0.57735));
+      s.colwise() += (x - s * M).eval();  // Σ M_i = 1: the Gauss point is x
+      e = Element{s, M, m};
+    }
+    const SurfaceContact c = e.evaluate();
+    ASSERT_TRUE(c.residual.allFinite() && c.tangent.allFinite());
+    if (!c.closed) continue;
+    ++counts[static_cast<int>(c.feature)];
+    const FdErrors err = fd_errors(e, c.tangent);
+    EXPECT_LE(err.residual, 1e-6) << "trial " << trial;
+    EXPECT_LE(err.tangent, 1e-6) << "trial " << trial;
+  }
+  EXPECT_GT(counts[0], 60);
+  EXPECT_GT(counts[1], 30);
+  EXPECT_GT(counts[2], 15);
+}
+
+TEST(NodeToSurface, OpenContactIsZero) {
+  for (const NodeCoordinates& m : {flat_quad, warped_quad, triangle}) {
+    const Element e{single(point_at(m, {0.2, 0.3}, 0.05)), one_node, m};
+    const SurfaceContact c = e.evaluate();
+    EXPECT_FALSE(c.closed);
+    EXPECT_NEAR(c.gap, 0.05, 1e-12);
+    EXPECT_EQ(c.pressure, 0.0);
+    EXPECT_TRUE(c.residual.isZero(0.0));
+    EXPECT_TRUE(c.tangent.isZero(0.0));
+    EXPECT_EQ(c.residual.size(), 3 * (1 + m.cols()));
+    EXPECT_EQ(node_to_surface_energy(e.slave, one_node, m, w, eps_n), 0.0);
+    EXPECT_TRUE(fd_jacobian_stacked([&](const Eigen::VectorXd& y) { return e.residual(y); }, e.x())
+                    .isZero(0.0));
+  }
+  // g = 0 counts as closed, with zero force.
+  const Eigen::Vector3d on = surface_point(flat_quad, {0.0, 0.0});
+  const SurfaceContact touching = node_to_surface(single(on), one_node, flat_quad, w, eps_n);
+  EXPECT_TRUE(touching.closed || touching.gap > 0);
+  EXPECT_LE(touching.residual.norm(), 1e-10);
+}
+
+TEST(NodeToSurface, GivenProjectionEqualsInternalOne) {
+  const Eigen::Vector3d x = point_at(warped_quad, {0.1, 0.4}, -0.03);
+  const SurfaceContact a = node_to_surface(single(x), one_node, warped_quad, w, eps_n);
+  const SurfaceContact b =
+      node_to_surface(single(x), one_node, warped_quad, project_to_facet(warped_quad, x), w, eps_n);
+  EXPECT_EQ(a.residual, b.residual);
+  EXPECT_EQ(a.tangent, b.tangent);
+}
+
+TEST(NodeToSurface, RejectsBadInput) {
+  const Eigen::Vector3d x = point_at(flat_quad, {0.1, 0.2}, -0.01);
+  const FacetProjection p = project_to_facet(flat_quad, x);
+  const auto call = [&](const NodeCoordinates& s, const Eigen::VectorXd& M,
+                        const NodeCoordinates& m, double ww,
+                        double e) { return node_to_surface(s, M, m, p, ww, e); };
+  EXPECT_THROW(call(single(x), one_node, flat_quad, -1e-3, eps_n), std::invalid_argument);
+  EXPECT_THROW(call(single(x), one_node, flat_quad, w, 0.0), std::invalid_argument);
+  EXPECT_THROW(call(single(x), one_node, flat_quad, std::nan(""), eps_n), std::invalid_argument);
+  EXPECT_THROW(call(single(x), Eigen::VectorXd::Ones(2), flat_quad, w, eps_n),
+               std::invalid_argument);
+  EXPECT_THROW(call(NodeCoordinates(3, 0), Eigen::VectorXd(0), flat_quad, w, eps_n),
+               std::invalid_argument);
+  EXPECT_THROW(call(single(x), one_node, NodeCoordinates::Random(3, 5), w, eps_n),
+               std::invalid_argument);
+  NodeCoordinates bad = flat_quad;
+  bad(0, 0) = std::nan("");
+  EXPECT_THROW(call(single(x), one_node, bad, w, eps_n), std::invalid_argument);
+  FacetProjection wrong = p;
+  wrong.feature = Feature::Edge;
+  wrong.local_index = 4;
+  EXPECT_THROW(node_to_surface(single(x), one_node, flat_quad, wrong, w, eps_n),
+               std::invalid_argument);
+  NodeCoordinates collapsed = flat_quad;
+  collapsed.col(3) = collapsed.col(2);
+  EXPECT_THROW(node_to_surface(single(x), one_node, collapsed, w, eps_n), std::invalid_argument);
+  EXPECT_THROW(node_to_surface_energy(single(x), one_node, collapsed, w, eps_n),
+               std::invalid_argument);
+  EXPECT_NO_THROW(call(single(x), one_node, flat_quad, 0.0, eps_n));
+}
+
+/// A 2 × 2 patch of unit quadrilaterals in z = 0 (nodes j * 3 + i at (i, j, 0)).
+struct Patch {
+  std::vector<double> coords;
+  std::vector<std::int32_t> quads{0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7};
+  Patch() {
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) coords.insert(coords.end(), {double(i), double(j), 0.0});
+  }
+  ClosestFacet closest(const Eigen::Vector3d& x, std::vector<std::int32_t> candidates) const {
+    return closest_facet(x, candidates, quads, 4, coords);
+  }
+};
+
+TEST(ClosestFacet, PicksTheClosestWithTieRules) {
+  const Patch patch;
+  const std::vector<std::int32_t> all{0, 1, 2, 3}, reversed{3, 2, 1, 0};
+  for (const auto& candidates : {all, reversed}) {
+    const ClosestFacet inside = patch.closest({1.5, 0.5, -0.1}, candidates);
+    EXPECT_EQ(inside.facet, 1);
+    EXPECT_EQ(inside.projection.feature, Feature::Face);
+    EXPECT_NEAR(inside.projection.distance, 0.1, 1e-15);
+    // Above the edge shared by facets 0 and 1 (and the node shared by all): Face on both, the
+    // lower index wins.
+    EXPECT_EQ(patch.closest({1.0, 0.5, -0.1}, candidates).facet, 0);
+    EXPECT_EQ(patch.closest({1.0, 1.0, 0.2}, candidates).facet, 0);
+    EXPECT_EQ(patch.closest({1.5, 1.0, 0.2}, candidates).facet, 1);
+    // Beyond the boundary: an edge of facet 1; at node 5, a vertex of facets 1 and 3.
+    const ClosestFacet edge = patch.closest({2.5, 0.5, 0.0}, candidates);
+    EXPECT_EQ(edge.facet, 1);
+    EXPECT_EQ(edge.projection.feature, Feature::Edge);
+    const ClosestFacet vertex = patch.closest({2.5, 1.0, 0.0}, candidates);
+    EXPECT_EQ(vertex.facet, 1);
+    EXPECT_EQ(vertex.projection.feature, Feature::Vertex);
+  }
+  // Only the candidates are tried.
+  EXPECT_EQ(patch.closest({1.5, 0.5, -0.1}, {2, 3}).facet, 3);
+}
+
+TEST(ClosestFacet, FaceWinsATieAgainstAnEdgeOfAHigherRankedFacet) {
+  // Facet 0 hinges down from the edge x = 1 of facet 1 (flat): above that edge, facet 1 gives a
+  // Face point on its boundary, facet 0 an Edge point, at the same distance.
+  const std::vector<double> coords{1, 0, 0, 2, 0, -1, 2, 1, -1, 1, 1, 0, 0, 0, 0, 0, 1, 0};
+  const std::vector<std::int32_t> quads{0, 1, 2, 3, 4, 0, 3, 5};
+  const ClosestFacet c =
+      closest_facet({1.0, 0.5, 0.3}, std::vector<std::int32_t>{0, 1}, quads, 4, coords);
+  EXPECT_EQ(c.facet, 1);
+  EXPECT_EQ(c.projection.feature, Feature::Face);
+  const FacetProjection other =
+      project_to_facet(gather_facet(0, quads, 4, coords), {1.0, 0.5, 0.3});
+  EXPECT_EQ(other.feature, Feature::Edge);
+  EXPECT_NEAR(other.distance, c.projection.distance, 1e-15);
+}
+
+TEST(ClosestFacet, TrianglesAndBadInput) {
+  const std::vector<double> coords{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  const std::vector<std::int32_t> tris{0, 1, 2, 1, 3, 2};
+  EXPECT_EQ(closest_facet({0.8, 0.7, 0.1}, std::vector<std::int32_t>{0, 1}, tris, 3, coords).facet,
+            1);
+  const auto call = [&](std::vector<std::int32_t> candidates, std::vector<std::int32_t> facets,
+                        int npf) {
+    return closest_facet({0.2, 0.2, 0.1}, candidates, facets, npf, coords);
+  };
+  EXPECT_THROW(call({}, tris, 3), std::invalid_argument);
+  EXPECT_THROW(call({0, 2}, tris, 3), std::out_of_range);
+  EXPECT_THROW(call({-1}, tris, 3), std::out_of_range);
+  EXPECT_THROW(call({0}, {0, 1, 9}, 3), std::out_of_range);
+  EXPECT_THROW(call({0}, tris, 5), std::invalid_argument);
+  EXPECT_THROW(call({0}, {0, 1, 2, 1}, 3), std::invalid_argument);
+  try {
+    call({0, 1}, {0, 1, 2, 0, 1, 1}, 3);
+    ADD_FAILURE() << "a degenerate candidate must throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("candidate facet 1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hypercontact
