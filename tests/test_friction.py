@@ -8,14 +8,16 @@ import pytest
 from conftest import quiet
 from mpi4py import MPI
 
-from hypercontact import scene
+import hypercontact.simulation
+from hypercontact import _cpp, scene
 from hypercontact.friction import FrictionalRigidContact
+from hypercontact.results import ResultsWriter
 from hypercontact.simulation import Simulation
 
 MU = 0.3
 
 
-def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25)):
+def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25), friction_keys=True, xdmf=False):
     """Top face held and moved by (shift, 0, −0.1); bottom on a rigid base."""
     data = {
         "mesh": {"builder": "box", "size": [1.0, 1.0, 1.0], "n": 2, "m": 2},
@@ -25,8 +27,10 @@ def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25)):
                      "mu": mu}],
         "steps": {"initial": steps[0], "max": steps[1]},
         "solver": {"rtol": 1e-12, "atol": 1e-12, "max_it": 40},  # line search "auto": bt with friction
-        "output": {"dir": str(out), "xdmf": False},
+        "output": {"dir": str(out), "xdmf": xdmf},
     }
+    if not friction_keys:  # the scene as a frictionless user writes it
+        del data["contact"][0]["eps_t"], data["contact"][0]["mu"]
     sim = Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)
     return sim, sim.run()
 
@@ -69,6 +73,40 @@ def test_zero_friction_builds_no_friction(out_dir):
     assert not any(isinstance(c, FrictionalRigidContact) for c in sim.contacts)
     assert "frictionless" in sim.effects[1]
     assert writer.steps[-1]["base_fx"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_zero_friction_equals_frictionless_exactly_and_calls_no_friction_kernel(out_dir, monkeypatch):
+    """μ = 0 (with a tangential penalty given) runs no friction kernel and
+    writes exactly what the scene without friction keys writes; and the
+    friction code itself, forced onto the μ = 0 contact, adds exactly
+    nothing (same solution, bit for bit)."""
+    calls = []
+
+    def forbidden(name):
+        def kernel(*args, **kwargs):
+            calls.append(name)
+            raise AssertionError(f"{name} called with μ = 0")
+        return kernel
+
+    monkeypatch.setattr(ResultsWriter, "draw_pictures", lambda self: {"skipped": "not drawn in this test"})
+    with monkeypatch.context() as m:
+        for name in ("assemble_rigid_friction_residual", "assemble_rigid_friction_tangent"):
+            m.setattr(_cpp, name, forbidden(name))
+        sim0, w0 = dragged_block(out_dir / "mu0", 0.3, mu=0.0, xdmf=True)
+        simf, wf = dragged_block(out_dir / "frictionless", 0.3, friction_keys=False, xdmf=True)
+    assert not calls
+    assert w0.columns == wf.columns and not any("dissipation" in c or "slip" in c for c in w0.columns)
+    assert [{k: s[k] for k in w0.columns} for s in w0.steps] == [{k: s[k] for k in wf.columns} for s in wf.steps]
+    assert np.array_equal(sim0.u.x.array, simf.u.x.array)
+    assert w0.fields == wf.fields and not any("slip" in name for name in w0.fields)
+    if MPI.COMM_WORLD.rank == 0:
+        assert (out_dir / "mu0" / "curves.csv").read_bytes() == (out_dir / "frictionless" / "curves.csv").read_bytes()
+    # The friction kernel at μ = 0 (forced: the simulation never builds it so) is frictionless exactly.
+    monkeypatch.setattr(hypercontact.simulation, "RigidContact", FrictionalRigidContact)
+    simk, wk = dragged_block(out_dir / "kernel", 0.3, mu=0.0)
+    assert isinstance(simk.contacts[0], FrictionalRigidContact)
+    assert np.array_equal(simk.u.x.array, simf.u.x.array)
+    assert wk.steps[-1]["base_dissipation"] == 0.0 and wk.steps[-1]["base_fx"] == wf.steps[-1]["base_fx"]
 
 
 def test_cut_back_leaves_the_history_as_if_never_failed(out_dir):

@@ -8,12 +8,20 @@ kernel returns it to the Coulomb cone (SPEC §2). The history changes only in
 :meth:`FrictionalRigidContact.commit`, after a converged step: a step that
 fails and is cut back leaves it as it was. Only contact pairs with μ > 0 are
 built with this class, so a frictionless scene never enters this code.
+
+Besides the history the return mapping needs, each node accumulates what the
+results report: its slip path Σ|Δs| (mm) and its dissipated energy Σ D
+(N mm, D = A t·Δs = μ p_N |Δs| A ≥ 0 in slip, 0 in stick); the total
+dissipation of the last converged step and of all of them (all ranks).
 """
 import numpy as np
 from mpi4py import MPI
 
 from . import _cpp
 from .contact import RigidContact
+
+#: Values of the kernel's per-node state (hypercontact::StickSlip).
+OPEN, STICK, SLIP = 0, 1, 2
 
 
 class FrictionalRigidContact(RigidContact):
@@ -27,7 +35,10 @@ class FrictionalRigidContact(RigidContact):
         self.xi = self.X.copy()  # positions at the last converged step
         self.t_old = np.zeros_like(self.X)
         self.lam_committed = 0.0
-        self.dissipation = 0.0  # accumulated over converged steps, all ranks
+        self.dissipation = 0.0  # accumulated over converged steps, all ranks (N mm)
+        self.dissipation_step = 0.0  # of the last converged step, all ranks (N mm)
+        self.slip_accumulated = np.zeros(len(self.nodes))  # per node: Σ |Δs| (mm)
+        self.dissipation_nodes = np.zeros(len(self.nodes))  # per node: Σ D (N mm)
         self.last = None  # friction state at the last residual evaluation
         self.committed = None  # friction state of the last converged step
 
@@ -65,8 +76,52 @@ class FrictionalRigidContact(RigidContact):
     def commit(self, u):
         """Make the converged state the history of the next step."""
         state = self.committed = self.friction_state(u)
-        self.dissipation += self.comm.allreduce(float(np.sum(state.dissipation)), op=MPI.SUM)
+        dissipation = np.asarray(state.dissipation)
+        self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
+        self.dissipation += self.dissipation_step
+        self.dissipation_nodes = self.dissipation_nodes + dissipation
+        self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
         self.t_old = np.ascontiguousarray(state.traction)
         self.xi = self.current_coordinates(u).copy()
         self.lam_committed = self.load_factor
         return state
+
+    def stick_slip_counts(self):
+        """(sticking, slipping) slave nodes at the last converged step, all ranks."""
+        if self.committed is None:
+            return 0, 0
+        s = np.asarray(self.committed.state)
+        local = np.array([np.count_nonzero(s == STICK), np.count_nonzero(s == SLIP)], dtype=np.int64)
+        return tuple(int(v) for v in self.comm.allreduce(local, op=MPI.SUM))
+
+    def surface_fields(self):
+        """Per slave node of this rank, at the last converged step: status
+        (0 open, 1 stick, 2 slip), the tangential traction the obstacle
+        exerts on the body (MPa, −t), the slip increment of the step and the
+        accumulated slip (mm), and the dissipation of the step and the
+        accumulated one per unit reference area (N/mm = mJ/mm²: nodal value
+        D / A, so that Σ A × value is the surface total)."""
+        n = len(self.nodes)
+        if self.committed is None:
+            zeros3 = np.zeros((n, 3))
+            return {"status": np.zeros(n), "traction": zeros3, "slip_increment": zeros3,
+                    "accumulated_slip": self.slip_accumulated.copy(), "dissipation_step": np.zeros(n),
+                    "dissipation": self.dissipation_nodes / self.area}
+        state = self.committed
+        return {"status": np.asarray(state.state, dtype=float),
+                "traction": -np.asarray(state.traction),
+                "slip_increment": np.asarray(state.slip_increment),
+                "accumulated_slip": self.slip_accumulated.copy(),
+                "dissipation_step": np.asarray(state.dissipation) / self.area,
+                "dissipation": self.dissipation_nodes / self.area}
+
+    def history_arrays(self):
+        """This rank's per-node history beyond ξ and t, for the checkpoint."""
+        return {"slip": self.slip_accumulated, "work": self.dissipation_nodes}
+
+    def restore_history_arrays(self, arrays):
+        """Inverse of :meth:`history_arrays` (a checkpoint without them, from
+        an older version, restarts the accumulated per-node values at 0)."""
+        n = len(self.nodes)
+        self.slip_accumulated = np.array(arrays.get("slip", np.zeros(n)), dtype=float)
+        self.dissipation_nodes = np.array(arrays.get("work", np.zeros(n)), dtype=float)

@@ -2,14 +2,19 @@
 
 - ``fields.xdmf``: per converged step (ParaView): ``displacement`` (vertex
   values), ``contact_gap`` and ``contact_pressure`` when there are contacts
-  (zero off the contact surfaces), and cell-wise constant (DG0) fields at
+  (zero off the contact surfaces), with friction also the friction fields of
+  :data:`FRICTION_FIELDS` (vertex values on the contact surfaces, zero off
+  them), and cell-wise constant (DG0) fields at
   each cell's midpoint: ``J`` = det F, and, when the writer is given the
   material's stress, ``cauchy_stress`` σ = J⁻¹ P Fᵀ (3×3, row by row) and
   ``von_mises`` √(3/2 s:s), s = dev σ. A field with a NaN or an infinite
   value is never written: :class:`NonFiniteField` names it and the step.
 - ``curves.csv``: one row per converged step: load factor, each contact's
   obstacle displacement and force on the body (× symmetry factor), probe
-  displacements, Newton iterations.
+  displacements, Newton iterations; with friction, per frictional contact
+  the dissipation of the step and accumulated (N mm, × symmetry factor) and
+  the numbers of sticking and slipping nodes, and the totals over all
+  frictional contacts.
 - ``summary.json``: the scene as it ran, the effects built, status, every
   step's Newton history and the wall-time split; rewritten after each step,
   so a failed run keeps every converged step on disk.
@@ -32,6 +37,32 @@ import ufl
 from mpi4py import MPI
 
 from . import _dolfinx as dfx
+
+
+#: Friction fields in fields.xdmf (when a contact has μ > 0): name → (key of
+#: FrictionalRigidContact.surface_fields, whether a vector, description).
+FRICTION_FIELDS = {
+    "contact_status": ("status", False, "vertex values: 0 open or off the contact surfaces, 1 stick, 2 slip "
+                       "(a closed node of a frictionless contact: 2)"),
+    "contact_tangential_traction": ("traction", True, "vertex values, MPa: the tangential traction the "
+                                    "obstacle exerts on the body"),
+    "contact_tangential_traction_magnitude": ("traction", False, "vertex values, MPa: its magnitude (≤ μ × "
+                                              "contact_pressure)"),
+    "contact_slip_increment": ("slip_increment", True, "vertex values, mm: slip (the inelastic part of the "
+                               "tangential motion) in this step"),
+    "contact_accumulated_slip": ("accumulated_slip", False, "vertex values, mm: Σ |slip increment| over "
+                                 "the steps so far"),
+    "contact_dissipation_step": ("dissipation_step", False, "vertex values, N/mm (= mJ/mm²): frictional "
+                                 "dissipation in this step per unit reference area (Σ nodal area × value = "
+                                 "the contact's <name>_dissipation_step / symmetry factor)"),
+    "contact_dissipation": ("dissipation", False, "vertex values, N/mm (= mJ/mm²): accumulated frictional "
+                            "dissipation per unit reference area"),
+}
+
+
+def frictional(contact):
+    """Whether a contact reports friction results (μ > 0)."""
+    return hasattr(contact, "surface_fields")
 
 
 class NonFiniteField(RuntimeError):
@@ -91,6 +122,11 @@ class ResultsWriter:
             self.q_nodes = np.asarray(q_to_v) // 3
             self.gap = dfx.fem.Function(self.Q, name="contact_gap")
             self.pressure = dfx.fem.Function(self.Q, name="contact_pressure")
+        self.friction_fields = {}
+        if any(frictional(c) for c in contacts) and scene["output"]["xdmf"]:
+            # contact needs degree 1: V is the first-order vector space
+            self.friction_fields = {name: dfx.fem.Function(V if vector else self.Q, name=name)
+                                    for name, (_, vector, _) in FRICTION_FIELDS.items()}
         append = previous is not None and (self.out / "fields.xdmf").is_file()
         # A run killed after writing a step's fields but before its checkpoint
         # recomputes that step on resume, identically: its fields are on disk.
@@ -117,6 +153,8 @@ class ResultsWriter:
             if contacts:
                 self.fields["contact_gap"] = "vertex values, mm (0 off the contact surfaces)"
                 self.fields["contact_pressure"] = "vertex values, MPa (0 off the contact surfaces)"
+            for name in self.friction_fields:
+                self.fields[name] = FRICTION_FIELDS[name][2]
             self.fields["J"] = "per cell (DG0, at the midpoint): det F"
             if stress is not None:
                 self.fields["cauchy_stress"] = "per cell (DG0, at the midpoint): σ = J⁻¹ P Fᵀ, 3×3 row by row, MPa"
@@ -128,8 +166,11 @@ class ResultsWriter:
         for c in contacts:
             self.columns += [f"{c.name}_displacement"] + [f"{c.name}_f{a}" for a in "xyz"]
             self.columns += [f"{c.name}_closed_nodes"]
-            if hasattr(c, "dissipation"):  # frictional: accumulated frictional dissipation (N mm)
-                self.columns += [f"{c.name}_dissipation"]
+            if frictional(c):  # frictional dissipation (N mm) of the step and accumulated, stick/slip nodes
+                self.columns += [f"{c.name}_dissipation_step", f"{c.name}_dissipation",
+                                 f"{c.name}_stick_nodes", f"{c.name}_slip_nodes"]
+        if any(frictional(c) for c in contacts):
+            self.columns += ["dissipation_step", "dissipation"]  # over all frictional contacts
         for name in probes:
             self.columns += [f"{name}_u{a}" for a in "xyz"]
         self.pressures = {f"pressure_{p['surface']}": p["value"] for p in scene["pressure"]}
@@ -154,8 +195,13 @@ class ResultsWriter:
             for a, f in zip("xyz", force):
                 row[f"{c.name}_f{a}"] = float(f)
             row[f"{c.name}_closed_nodes"] = c.num_closed(self.u)
-            if hasattr(c, "dissipation"):
+            if frictional(c):
+                row[f"{c.name}_dissipation_step"] = self.factor * c.dissipation_step
                 row[f"{c.name}_dissipation"] = self.factor * c.dissipation
+                row[f"{c.name}_stick_nodes"], row[f"{c.name}_slip_nodes"] = c.stick_slip_counts()
+        if any(frictional(c) for c in self.contacts):
+            row["dissipation_step"] = self.factor * sum(c.dissipation_step for c in self.contacts if frictional(c))
+            row["dissipation"] = self.factor * sum(c.dissipation for c in self.contacts if frictional(c))
         for name, probe in self.probes.items():
             for a, value in zip("xyz", probe.value(self.u)):
                 row[f"{name}_u{a}"] = float(value)
@@ -241,7 +287,40 @@ class ResultsWriter:
         self.pressure.x.array[:] = pressure[self.q_nodes]
         dfx.update_ghosts(self.gap)
         dfx.update_ghosts(self.pressure)
-        return [self.gap, self.pressure]
+        return [self.gap, self.pressure] + self._friction_fields(n_local)
+
+    def _friction_fields(self, n_local):
+        """The FRICTION_FIELDS at the last converged step: vertex values on
+        the slave nodes, summed where two contacts share a node (the status:
+        the larger), zero elsewhere."""
+        if not self.friction_fields:
+            return []
+        values = {"status": np.zeros(n_local), "traction": np.zeros((n_local, 3)),
+                  "slip_increment": np.zeros((n_local, 3)), "accumulated_slip": np.zeros(n_local),
+                  "dissipation_step": np.zeros(n_local), "dissipation": np.zeros(n_local)}
+        for c in self.contacts:
+            if frictional(c):
+                for key, v in c.surface_fields().items():
+                    if key == "status":
+                        values[key][c.nodes] = np.maximum(values[key][c.nodes], v)
+                    else:
+                        values[key][c.nodes] += v
+            else:  # frictionless: a closed node slides freely
+                closed = c.nodes[np.asarray(c.evaluate(self.u).gap) <= 0.0]
+                values["status"][closed] = np.maximum(values["status"][closed], 2.0)
+        out = []
+        for name, f in self.friction_fields.items():
+            key, vector, _ = FRICTION_FIELDS[name]
+            v = values[key]
+            if vector:
+                f.x.array[:] = v.ravel()
+            elif v.ndim == 2:  # the magnitude of a vector
+                f.x.array[:] = np.linalg.norm(v, axis=1)[self.q_nodes]
+            else:
+                f.x.array[:] = v[self.q_nodes]
+            dfx.update_ghosts(f)
+            out.append(f)
+        return out
 
     def finish(self, status, message, timers):
         """Close the files, draw the pictures (if a step converged) and write

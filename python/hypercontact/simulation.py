@@ -271,6 +271,7 @@ class Simulation:
             for c in self.contacts:
                 if isinstance(c, FrictionalRigidContact):
                     arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"] = c.xi, c.t_old
+                    arrays.update({f"{k}_{c.name}": v for k, v in c.history_arrays().items()})
             state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
                      "friction": friction}
             self.checkpoint.save(state, w=self.w.x.array, **arrays)
@@ -332,6 +333,8 @@ class Simulation:
                     c.xi, c.t_old = arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"]
                     c.lam_committed = state["friction"][c.name]["lam_committed"]
                     c.dissipation = state["friction"][c.name]["dissipation"]
+                    c.restore_history_arrays({k: arrays[f"{k}_{c.name}"] for k in c.history_arrays()
+                                              if f"{k}_{c.name}" in arrays})
         PETSc.Log.begin()
         events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         t0 = {name: e.getPerfInfo()["time"] for name, e in events.items()}
