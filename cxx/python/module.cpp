@@ -4,6 +4,7 @@ namespace hypercontact::python {
 void declare_obstacle(pybind11::module_& m);
 void declare_normal_penalty(pybind11::module_& m);
 void declare_nodal_area(pybind11::module_& m);
+void declare_contact_search(pybind11::module_& m);
 void declare_assemble_rigid(pybind11::module_& m);
 void declare_assemble_friction(pybind11::module_& m);
 }  // namespace hypercontact::python
@@ -13,6 +14,7 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_obstacle(m);
   hypercontact::python::declare_normal_penalty(m);
   hypercontact::python::declare_nodal_area(m);
+  hypercontact::python::declare_contact_search(m);
   hypercontact::python::declare_assemble_rigid(m);
   hypercontact::python::declare_assemble_friction(m);
 }

@@ -171,7 +171,7 @@ def _local_surface(mesh, u, values, scale):
 
 
 def deformed_shape(mesh, u, values, png_path, scale=1.0, title="", label=None, view=(28.0, -130.0),
-                   cmap="viridis"):
+                   cmap="viridis", limits=None):
     """Draw the boundary surface of the body deformed by ``u`` (times
     ``scale``) into ``png_path``, each boundary facet coloured by ``values``:
 
@@ -183,7 +183,9 @@ def deformed_shape(mesh, u, values, png_path, scale=1.0, title="", label=None, v
     Nodal fields colour a facet by the mean of its vertices. Collective: call
     on every rank; rank 0 gathers the owned exterior facets and draws. A
     failure on any rank raises the same RuntimeError on every rank. Returns
-    ``png_path``. ``view`` = (elevation, azimuth) in degrees."""
+    ``png_path``. ``view`` = (elevation, azimuth) in degrees. ``limits`` =
+    (low, high) fixes the colour scale (values outside take the end colours),
+    e.g. to compare pictures of several runs; default: the field's range."""
     comm = mesh.comm
     try:
         local = _local_surface(mesh, u, values, scale)
@@ -200,7 +202,7 @@ def deformed_shape(mesh, u, values, png_path, scale=1.0, title="", label=None, v
             try:
                 polygons = np.concatenate([p for (p, _, _), _ in gathered], axis=0)
                 colour = np.concatenate([c for (_, c, _), _ in gathered])
-                _draw_surface(polygons, colour, png_path, title, label or gathered[0][0][2], view, cmap)
+                _draw_surface(polygons, colour, png_path, title, label or gathered[0][0][2], view, cmap, limits)
             except Exception as err:
                 outcome = f"{type(err).__name__}: {err}"
     outcome = comm.bcast(outcome, root=0)
@@ -209,12 +211,14 @@ def deformed_shape(mesh, u, values, png_path, scale=1.0, title="", label=None, v
     return Path(png_path)
 
 
-def _draw_surface(polygons, colour, png_path, title, label, view, cmap):
+def _draw_surface(polygons, colour, png_path, title, label, view, cmap, limits=None):
     if len(polygons) == 0:
         raise ValueError("no exterior facets")
     if not np.all(np.isfinite(polygons)) or not np.all(np.isfinite(colour)):
         raise ValueError("non-finite coordinates or values")
-    lo, hi = float(colour.min()), float(colour.max())
+    if limits is not None and not (len(limits) == 2 and np.all(np.isfinite(limits)) and limits[0] < limits[1]):
+        raise ValueError(f"limits must be two finite numbers (low, high) with low < high, found {limits!r}")
+    lo, hi = (float(colour.min()), float(colour.max())) if limits is None else (float(limits[0]), float(limits[1]))
     if hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-300):  # a constant field: a visible, centred range
         pad = max(abs(lo) * 1e-3, 1e-12)
         lo, hi = lo - pad, hi + pad

@@ -1,0 +1,78 @@
+"""The paper's four friction cases of the punch as built-in scenes: they are
+the frictionless punch with only the friction keys changed, and on a coarse
+mesh they keep vertical equilibrium with friction and move the plate the way
+the paper says (friction under the punch lifts the plate's edge and corner
+more, friction on the base less). bench/punch_friction.py runs them on the
+real meshes."""
+import tomllib
+
+import pytest
+from conftest import ROOT, quiet
+from mpi4py import MPI
+
+from hypercontact import cli, scene
+from hypercontact.results import ResultsWriter
+from hypercontact.simulation import Simulation
+
+CASES = {"punch_mu0_0": (0.0, 0.0), "punch_mu0.3_0": (0.3, 0.0), "punch_mu1_0": (1.0, 0.0), "punch_mu0_1": (0.0, 1.0)}
+
+
+def test_the_four_cases_are_the_punch_with_friction_only():
+    punch = tomllib.loads((ROOT / "scenes" / "punch.toml").read_text())
+    listed = []
+
+    class Out:
+        def write(self, text):
+            listed.append(text)
+
+    cli.list_scenes(Out())
+    for name, (mu1, mu2) in CASES.items():
+        assert any(line.startswith(name + " ") for line in "".join(listed).splitlines())
+        case = tomllib.loads((ROOT / "scenes" / f"{name}.toml").read_text())
+        assert [c["mu"] for c in case["contact"]] == [mu1, mu2]
+        assert f"({mu1:g}, {mu2:g})" in case["title"]
+        for c in case["contact"]:
+            del c["mu"], c["eps_t"]
+        del case["title"], case["output"]["dir"], case["solver"]["linesearch"]
+        reference = {k: v for k, v in punch.items() if k != "title"}
+        reference["output"] = {k: v for k, v in punch["output"].items() if k != "dir"}
+        assert case == reference, name
+        scene.load(ROOT / "scenes" / f"{name}.toml")  # valid
+
+
+@pytest.fixture(scope="module")
+def coarse(tmp_path_factory):
+    comm = MPI.COMM_WORLD
+    out = comm.bcast(str(tmp_path_factory.mktemp("punch_friction")) if comm.rank == 0 else None, root=0)
+    rows = {}
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(ResultsWriter, "draw_pictures", lambda self: {"skipped": "not drawn in this test"})
+        for name in CASES:
+            sc = scene.load(ROOT / "scenes" / f"{name}.toml",
+                            ["mesh.n=4", "mesh.m=1", "output.xdmf=false", f"output.dir={out}/{name}"])
+            rows[name] = Simulation(sc, comm, log=quiet).run().steps
+    return rows
+
+
+def test_equilibrium_with_friction(coarse):
+    """The symmetry planes take no vertical force, so the punch force equals
+    the base reaction, friction on the punch's side walls included."""
+    for name, steps in coarse.items():
+        assert steps[-1]["load_factor"] == pytest.approx(1.0)
+        for s in steps:
+            assert s["punch_fz"] + s["base_fz"] == pytest.approx(0.0, abs=1e-8 * abs(s["punch_fz"])), name
+            if any(CASES[name]):
+                assert s["dissipation_step"] >= 0.0
+        if any(CASES[name]):
+            assert steps[-1]["dissipation"] > 0.0
+
+
+def test_friction_under_the_punch_lifts_more_on_the_base_less(coarse):
+    ref = coarse["punch_mu0_0"][-1]
+    assert ref["edge_uz"] > 0 and ref["corner_uz"] > 0
+    for name in ("punch_mu0.3_0", "punch_mu1_0"):
+        last = coarse[name][-1]
+        assert last["edge_uz"] > ref["edge_uz"] and last["corner_uz"] > ref["corner_uz"], name
+        assert -last["punch_fz"] > -ref["punch_fz"]  # and it takes more force to indent
+    last = coarse["punch_mu0_1"][-1]
+    assert last["edge_uz"] < ref["edge_uz"] and last["corner_uz"] < ref["corner_uz"]
