@@ -191,6 +191,9 @@ def main(argv=None):
     def pct(case):
         return 100 * (over[case]["cpu"] - ready["cpu"]) / ready["cpu"]
 
+    per_log = [r["tree_cpu"] / (r["nodes"] * math.log2(r["nodes"])) * 1e9
+               for r in rows if r["nodes"] >= 1e3] or [math.nan]
+    band = (min(per_log), max(per_log))
     cpu_model = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
                       if line.startswith("model name")), platform.processor())
     load = os.getloadavg()[0]
@@ -214,8 +217,8 @@ Growth of the tree search time, t ∝ n^p (least squares on log t against log n)
 p = {fmt(p['cpu4'])} for n ≥ 10⁴, p = {fmt(p['cpu'])} over all sizes.
 {f"The brute force: p = {p['brute']:.2f} (n · f ∝ n²). " if p['brute'] else ""}For reference,
 n log₂ n between 10³ and 10⁶ has a local exponent of 1 + 1/ln n = 1.07–1.14; the last column
-(time per node and per log₂ n) is what an O(n log n) search keeps constant: it rises from 10²
-to ~10⁴ nodes, where the data leave the caches, and is flat beyond.
+(time per node and per log₂ n) is what an O(n log n) search keeps constant: here it stays
+between {band[0]:.0f} and {band[1]:.0f} ns from 10³ to {rows[-1]['nodes']:,} nodes.
 
 ## Python-side call overhead ({over['nodes']:,} surface nodes)
 
