@@ -23,13 +23,14 @@ def _variational_forms(u, energy):
     return R, ufl.derivative(R, u, ufl.TrialFunction(V))
 
 
-def displacement_forms(u, psi, params, quadrature_degree):
-    """Plain displacement formulation: Π = ∫ ψ(F) dV with the given rule."""
-    dx = ufl.dx(metadata={"quadrature_degree": int(quadrature_degree)})
+def displacement_forms(u, psi, params, quadrature_degree, dx=None):
+    """Plain displacement formulation: Π = ∫ ψ(F) dV with the given rule
+    (over the measure ``dx``, e.g. one body's cells, if given)."""
+    dx = (dx or ufl.dx)(metadata={"quadrature_degree": int(quadrature_degree)})
     return _variational_forms(u, lambda F: psi(F, **params) * dx)
 
 
-def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree):
+def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree, dx=None):
     """Selective reduced integration: the isochoric energy with the full rule,
     the volumetric penalty K/2 (J − 1)² with one point per hexahedron (the
     constant-pressure mode only), which removes volumetric locking of
@@ -40,8 +41,8 @@ def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree):
     this formulation admits a spurious aspherical bifurcation that the plain
     formulation does not show.
     """
-    dx_full = ufl.dx(metadata={"quadrature_degree": int(quadrature_degree)})
-    dx_one = ufl.dx(metadata={"quadrature_degree": 1})
+    dx_full = (dx or ufl.dx)(metadata={"quadrature_degree": int(quadrature_degree)})
+    dx_one = (dx or ufl.dx)(metadata={"quadrature_degree": 1})
     return _variational_forms(
         u, lambda F: psi_iso(F, **params) * dx_full + 0.5 * K * (ufl.det(F) - 1.0) ** 2 * dx_one)
 

@@ -7,6 +7,7 @@ void declare_nodal_area(pybind11::module_& m);
 void declare_contact_search(pybind11::module_& m);
 void declare_assemble_rigid(pybind11::module_& m);
 void declare_assemble_friction(pybind11::module_& m);
+void declare_assemble_surface(pybind11::module_& m);
 }  // namespace hypercontact::python
 
 PYBIND11_MODULE(_cpp, m) {
@@ -17,4 +18,5 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_contact_search(m);
   hypercontact::python::declare_assemble_rigid(m);
   hypercontact::python::declare_assemble_friction(m);
+  hypercontact::python::declare_assemble_surface(m);
 }

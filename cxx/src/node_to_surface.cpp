@@ -119,7 +119,7 @@ int rank(Feature f) { return f == Feature::Face ? 0 : f == Feature::Edge ? 1 : 2
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n) {
+                               double w, double eps_n, double touch) {
   constexpr const char* who = "node_to_surface";
   check_parameters(w, eps_n, who);
   const detail::SurfaceKinematics k =
@@ -133,7 +133,9 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
                         projection.feature,
                         projection.local_index,
                         false};
-  if (k.gap > 0) return result;
+  if (!(touch >= 0))
+    throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
+  if (k.gap > touch) return result;
   const detail::ProjectionDerivatives d = detail::projection_derivatives(k, who);
   const double scale = w * eps_n;
   result.residual = scale * k.P.transpose() * k.r;
@@ -156,7 +158,8 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
 }
 
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
-                              const NodeCoordinates& master, double w, double eps_n) {
+                              const NodeCoordinates& master, double w, double eps_n,
+                              double touch) {
   constexpr const char* who = "node_to_surface_energy";
   check_parameters(w, eps_n, who);
   if (weights.size() != slave.cols() || !slave.allFinite() || !weights.allFinite())
@@ -164,7 +167,8 @@ double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorX
                                 ": slave coordinates and weights must be finite and as many");
   const FacetProjection p = project_to_facet(master, slave * weights);
   const detail::SurfaceKinematics k = detail::surface_kinematics(slave, weights, master, p, who);
-  if (k.gap > 0) return 0.0;
+  if (!(touch >= 0)) throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
+  if (k.gap > touch) return 0.0;
   return 0.5 * w * eps_n * k.r.squaredNorm();
 }
 

@@ -175,3 +175,43 @@ class XDMFWriter:
 
     def close(self):
         self._file.close()
+
+
+def mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values):
+    """A hexahedral mesh from arrays on rank 0 (gmsh node order; other ranks
+    pass empty arrays): (mesh, cell_tags, facet_tags). What
+    gmshio.model_to_mesh does, for meshes merged from several bodies."""
+    ufl_domain = gmshio.ufl_mesh(5, 3)  # gmsh type 5: 8-node hexahedron
+    cells = np.asarray(hexes, dtype=np.int64).reshape(-1, 8)
+    cells = cells[:, gmshio.cell_perm_array(dolfinx.mesh.CellType.hexahedron, 8)]
+    x = np.asarray(x, dtype=np.float64).reshape(-1, 3)
+    mesh = gmshio.create_mesh(comm, cells, x, ufl_domain)
+    tdim = mesh.topology.dim
+    entities, values = dolfinx.cpp.io.distribute_entity_data(
+        mesh._mesh, tdim, cells, np.asarray(cell_values, dtype=np.int32))
+    mesh.topology.create_connectivity(tdim, 0)
+    cell_tags = dolfinx.mesh.meshtags_from_entities(
+        mesh, tdim, dolfinx.cpp.graph.AdjacencyList_int32(entities), values.astype(np.int32))
+    facets = np.asarray(quads, dtype=np.int64).reshape(-1, 4)
+    facets = facets[:, gmshio.cell_perm_array(dolfinx.mesh.CellType.quadrilateral, 4)]
+    entities, values = dolfinx.cpp.io.distribute_entity_data(
+        mesh._mesh, tdim - 1, facets, np.asarray(quad_values, dtype=np.int32))
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    facet_tags = dolfinx.mesh.meshtags_from_entities(
+        mesh, tdim - 1, dolfinx.cpp.graph.AdjacencyList_int32(entities), values.astype(np.int32))
+    return mesh, cell_tags, facet_tags
+
+
+def gmsh_arrays(model):
+    """(x, hexes, hex physical tags, quads, quad physical tags) of a gmsh
+    model with 8-node hexahedra; node indices from 0, gmsh node order."""
+    x = gmshio.extract_geometry(model)
+    topologies = gmshio.extract_topology_and_markers(model)
+    hexes = topologies.get(5, {"topology": np.zeros((0, 8)), "cell_data": np.zeros(0)})
+    quads = topologies.get(3, {"topology": np.zeros((0, 4)), "cell_data": np.zeros(0)})
+    return (x, np.asarray(hexes["topology"], dtype=np.int64), np.asarray(hexes["cell_data"], dtype=np.int32),
+            np.asarray(quads["topology"], dtype=np.int64), np.asarray(quads["cell_data"], dtype=np.int32))
+
+
+def num_owned_cells(mesh):
+    return mesh.topology.index_map(mesh.topology.dim).size_local

@@ -17,6 +17,8 @@ class Body:
     mesh: object
     facet_tags: object
     surfaces: dict
+    cell_tags: object = None  #: body (region) tag of each cell, for several bodies
+    regions: dict = None  #: body name → cell tag, for several bodies
 
 
 _gmsh_ready = False
@@ -108,6 +110,15 @@ def read_msh(comm, path):
     return _from_gmsh(comm, load)
 
 
+def _raise_everywhere(comm, error):
+    """Raise rank 0's error (if any) on every rank, resetting gmsh."""
+    error = comm.bcast(error, root=0)
+    if error is not None:
+        if comm.rank == 0:
+            _reset_gmsh()
+        raise error
+
+
 def _from_gmsh(comm, make):
     gmsh = _gmsh() if comm.rank == 0 else None
     error, names = None, None
@@ -118,14 +129,171 @@ def _from_gmsh(comm, make):
             names = _physical_surface_names(gmsh)
         except Exception as err:
             error = err
-    error = comm.bcast(error, root=0)
-    if error is not None:
-        if comm.rank == 0:
-            _reset_gmsh()
-        raise error
+    _raise_everywhere(comm, error)
     names = comm.bcast(names, root=0)
     mesh, facet_tags = dfx.mesh_from_gmsh(gmsh.model if comm.rank == 0 else None, comm)
     if comm.rank == 0:
         gmsh.clear()
     return Body(mesh, facet_tags, names)
 
+
+
+def hemisphere_arrays(radius, n, m, center=(0.0, 0.0, 0.0), grading=(1.0, 1.0)):
+    """A quarter of a solid hemisphere, structured hexahedra: the part
+    x, y >= 0, z <= 0 of the ball |X − center| <= radius (its flat face on
+    top, its pole at center − (0, 0, radius)). The cube [0,1]² × [−1,0]
+    with n × n × m cells is mapped onto it by the smooth cube-to-ball map
+        x = a √(1 − b²/2 − c²/2 + b²c²/3)  (and cyclically),
+    which maps the cube faces a = 1, b = 1, c = −1 onto the sphere and the
+    planes a = 0, b = 0, c = 0 onto x = 0, y = 0, z = 0. ``grading`` =
+    (g_ab, g_c) >= 1 clusters the cells towards the pole (a, b → 0 and
+    c → −1), where a Hertz contact is.
+
+    Returns (x, hexes, hex names, quads, quad names) in gmsh node order, the
+    quads named "curved" (the sphere), "flat" (z = 0), "xmin", "ymin".
+    """
+    for name, value in (("n", n), ("m", m)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+            raise ValueError(f"'{name}': expected a positive integer, found {value!r}")
+    if not (np.isfinite(radius) and radius > 0):
+        raise ValueError(f"'radius': expected a finite number > 0, found {radius!r}")
+    g_ab, g_c = (grading, grading) if np.isscalar(grading) else grading
+    a1 = np.linspace(0.0, 1.0, n + 1) ** g_ab
+    c1 = -1.0 + np.linspace(0.0, 1.0, m + 1) ** g_c
+    a, b, c = np.meshgrid(a1, a1, c1, indexing="ij")
+    x = a * np.sqrt(1 - b**2 / 2 - c**2 / 2 + b**2 * c**2 / 3)
+    y = b * np.sqrt(1 - a**2 / 2 - c**2 / 2 + a**2 * c**2 / 3)
+    z = c * np.sqrt(1 - a**2 / 2 - b**2 / 2 + a**2 * b**2 / 3)
+    X = radius * np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1) + np.asarray(center, dtype=float)
+
+    def node(i, j, k):
+        return (i * (n + 1) + j) * (m + 1) + k
+
+    i, j, k = (g.ravel() for g in np.meshgrid(np.arange(n), np.arange(n), np.arange(m), indexing="ij"))
+    hexes = np.stack([node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                      node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)],
+                     axis=1)
+    quads, names = [], []
+
+    def face(fixed_axis, index, name):
+        p, q = np.meshgrid(np.arange(n if fixed_axis != 2 else n), np.arange(m if fixed_axis != 2 else n),
+                           indexing="ij")
+        p, q = p.ravel(), q.ravel()
+        if fixed_axis == 0:
+            corners = [node(index, p, q), node(index, p + 1, q), node(index, p + 1, q + 1), node(index, p, q + 1)]
+        elif fixed_axis == 1:
+            corners = [node(p, index, q), node(p + 1, index, q), node(p + 1, index, q + 1), node(p, index, q + 1)]
+        else:
+            corners = [node(p, q, index), node(p + 1, q, index), node(p + 1, q + 1, index), node(p, q + 1, index)]
+        quads.append(np.stack(corners, axis=1))
+        names.extend([name] * len(p))
+
+    face(0, 0, "xmin")
+    face(0, n, "curved")
+    face(1, 0, "ymin")
+    face(1, n, "curved")
+    face(2, 0, "curved")
+    face(2, m, "flat")
+    return X, hexes, ["body"] * len(hexes), np.concatenate(quads), names
+
+
+def graded_box_arrays(size, n, m, origin, grading):
+    """A structured box like :func:`box_model` (n × n × m cells, surfaces
+    xmin … zmax) with graded spacing: per axis, grading g > 1 clusters the
+    cells towards the min side (coordinates ∝ t^g), g < −1 towards the max
+    side, ±1 is uniform."""
+    axes = []
+    for L, o, k, g in zip(size, origin, (n, n, m), grading):
+        t = np.linspace(0.0, 1.0, k + 1)
+        t = t ** g if g > 0 else 1.0 - (1.0 - t) ** (-g)
+        axes.append(o + L * t)
+    nx, ny, nz = n + 1, n + 1, m + 1
+    X, Y, Z = np.meshgrid(*axes, indexing="ij")
+    x = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
+
+    def node(i, j, k):
+        return (i * ny + j) * nz + k
+
+    i, j, k = (g.ravel() for g in np.meshgrid(np.arange(n), np.arange(n), np.arange(m), indexing="ij"))
+    hexes = np.stack([node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                      node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)],
+                     axis=1)
+    quads, names = [], []
+    for axis, (a, b) in enumerate([(1, 2), (0, 2), (0, 1)]):
+        counts = (n, n, m)
+        p, q = (g.ravel() for g in np.meshgrid(np.arange(counts[a]), np.arange(counts[b]), indexing="ij"))
+        for side, index in (("min", 0), ("max", counts[axis])):
+            def at(pp, qq):
+                ijk = [None, None, None]
+                ijk[axis], ijk[a], ijk[b] = index, pp, qq
+                return node(*ijk)
+            quads.append(np.stack([at(p, q), at(p + 1, q), at(p + 1, q + 1), at(p, q + 1)], axis=1))
+            names.extend([f"{'xyz'[axis]}{side}"] * len(p))
+    return x, hexes, ["body"] * len(hexes), np.concatenate(quads), names
+
+
+def _builder_arrays(spec):
+    """(x, hexes, hex names, quads, quad names) of one body's mesh spec
+    (the keys of a scene's [mesh] or [[body]] entry)."""
+    grading = spec.get("grading", (1.0, 1.0, 1.0))
+    if spec["builder"] == "box" and any(g != 1.0 for g in grading):
+        return graded_box_arrays(spec["size"], spec["n"], spec["m"], spec["origin"], grading)
+    if spec["builder"] == "hemisphere":
+        if min(grading) < 1.0:
+            raise ValueError(f"hemisphere: grading must be >= 1 (towards the pole), found {grading}")
+        return hemisphere_arrays(spec["radius"], spec["n"], spec["m"], spec["origin"], (grading[0], grading[2]))
+    gmsh = _gmsh()
+    gmsh.clear()
+    try:
+        if spec["builder"] == "box":
+            box_model(gmsh, spec["size"], spec["n"], spec["m"], spec["origin"])
+        elif spec["builder"] == "shell_octant":
+            from .shell import shell_octant_model
+
+            shell_octant_model(gmsh, spec["inner_radius"], spec["thickness"], spec["n"], spec["m"])
+        else:
+            raise ValueError(f"builder {spec['builder']!r} cannot be one of several bodies "
+                             "(use box, shell_octant or hemisphere)")
+        x, hexes, hex_tags, quads, quad_tags = dfx.gmsh_arrays(gmsh.model)
+        names = {tag: gmsh.model.getPhysicalName(2, tag) for _, tag in gmsh.model.getPhysicalGroups(2)}
+    finally:
+        gmsh.clear()
+    if len(hexes) == 0:
+        raise ValueError("the mesh has no hexahedra")
+    return x, hexes, ["body"] * len(hexes), quads, [names[t] for t in quad_tags]
+
+
+def build_bodies(comm, parts):
+    """Several bodies in one mesh, sharing no node: ``parts`` is a list of
+    (name, mesh spec); the first body's surfaces keep their plain names
+    (xmin, zmax, ...), the others' are prefixed "NAME." (punch.zmin). Cells
+    are tagged by body (regions: name → tag, 1, 2, ...)."""
+    error, surfaces, regions = None, None, None
+    x = hexes = cell_values = quads = quad_values = None
+    if comm.rank == 0:
+        try:
+            xs, hs, cvs, qs, qvs, surfaces = [], [], [], [], [], {}
+            offset = 0
+            for k, (name, spec) in enumerate(parts):
+                xb, hb, _, qb, qnames = _builder_arrays(spec)
+                prefix = "" if k == 0 else f"{name}."
+                for qn in qnames:
+                    surfaces.setdefault(prefix + qn, len(surfaces) + 1)
+                xs.append(xb)
+                hs.append(hb + offset)
+                qs.append(qb + offset)
+                cvs.append(np.full(len(hb), k + 1, dtype=np.int32))
+                qvs.append(np.array([surfaces[prefix + qn] for qn in qnames], dtype=np.int32))
+                offset += len(xb)
+            x, hexes, cell_values = np.concatenate(xs), np.concatenate(hs), np.concatenate(cvs)
+            quads, quad_values = np.concatenate(qs), np.concatenate(qvs)
+            regions = {name: k + 1 for k, (name, _) in enumerate(parts)}
+        except Exception as err:
+            error = err
+    _raise_everywhere(comm, error)
+    surfaces, regions = comm.bcast((surfaces, regions), root=0)
+    if comm.rank != 0:
+        x, hexes, cell_values = np.zeros((0, 3)), np.zeros((0, 8), dtype=np.int64), np.zeros(0, dtype=np.int32)
+        quads, quad_values = np.zeros((0, 4), dtype=np.int64), np.zeros(0, dtype=np.int32)
+    mesh, cell_tags, facet_tags = dfx.mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values)
+    return Body(mesh, facet_tags, surfaces, cell_tags, regions)

@@ -15,14 +15,61 @@ class Problem:
 
     def __init__(self, u, R, J, bcs, contacts, timers):
         self.u, self.bcs, self.contacts, self.timers = u, bcs, contacts, timers
+        # Rigid contacts add into the local residual array (their slave
+        # node's own dofs); deformable ones add rows anywhere, by global index.
+        self.local_contacts = [c for c in contacts if not getattr(c, "global_assembly", False)]
+        self.global_contacts = [c for c in contacts if getattr(c, "global_assembly", False)]
         self.R = dfx.compile_form(R)
         self.J = dfx.compile_form(J)
         self.A = dfx.create_matrix(self.J)
         self.b = dfx.create_vector(self.R)
         self.x = self.b.duplicate()
-        # A contact entry outside the volume pattern would be a silent malloc:
-        # rigid contact couples a node's own dofs only, inside the pattern.
+        # A contact entry outside the pattern would be a silent malloc: rigid
+        # contact couples a node's own dofs only, inside the volume pattern;
+        # deformable contact gets its couplings in rebuild_pattern.
         self.A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
+        self._volume_csr = None
+        self.pattern_builds = 0
+
+    def rebuild_pattern(self):
+        """A new matrix whose pattern is the volume pattern plus the
+        slave–master couplings of the deformable contacts' current pairing
+        (self.A is replaced; the caller hands it to the solver)."""
+        comm = self.A.getComm().tompi4py()
+        if self._volume_csr is None:
+            dfx.assemble_tangent(self.A, self.J, self.bcs)
+            self.A.assemble()
+            indptr, cols, _ = self.A.getValuesCSR()
+            self._volume_csr = (indptr.astype(np.int64), cols.astype(np.int64))
+        indptr, cols = self._volume_csr
+        r0, r1 = self.A.getOwnershipRange()
+        ranges = np.asarray(self.A.getOwnershipRanges(), dtype=np.int64)
+        n_global = self.A.getSize()[1]
+        rows = [np.repeat(np.arange(r1 - r0, dtype=np.int64), np.diff(indptr)) + r0]
+        colsl = [cols]
+        for c in self.global_contacts:
+            cr, cc = c.couplings()
+            rows.append(cr)
+            colsl.append(cc)
+        rows, cols_all = np.concatenate(rows), np.concatenate(colsl)
+        if comm.size > 1:  # couplings in rows owned elsewhere go to their owner
+            owner = np.searchsorted(ranges, rows, side="right") - 1
+            outgoing = [(rows[owner == r], cols_all[owner == r]) for r in range(comm.size)]
+            incoming = comm.alltoall(outgoing)
+            rows = np.concatenate([i[0] for i in incoming])
+            cols_all = np.concatenate([i[1] for i in incoming])
+        keys = np.unique((rows - r0) * n_global + cols_all)
+        local_rows = keys // n_global
+        new_indptr = np.searchsorted(local_rows, np.arange(r1 - r0 + 1)).astype(PETSc.IntType)
+        new_cols = (keys % n_global).astype(PETSc.IntType)
+        A = PETSc.Mat().createAIJ(self.A.getSizes(), bsize=self.A.getBlockSize(), csr=(new_indptr, new_cols),
+                                  comm=self.A.getComm())
+        A.setLGMap(*self.A.getLGMap())
+        A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
+        self.A.destroy()
+        self.A = A
+        self.pattern_builds += 1
+        return A
 
     def _update_u(self, x):
         x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
@@ -33,13 +80,19 @@ class Problem:
         self._update_u(x)
         with self.timers("volume assembly"):
             dfx.assemble_volume_residual(b, self.R)
-        if self.contacts:
+        if self.local_contacts:
             with self.timers("contact"), b.localForm() as bl:
                 array = bl.array_w
-                for c in self.contacts:
+                for c in self.local_contacts:
                     c.add_residual(self.u, array)
         with self.timers("volume assembly"):
             dfx.finish_residual(b, self.J, self.bcs, x)
+        if self.global_contacts:
+            with self.timers("contact"):
+                for c in self.global_contacts:
+                    c.add_residual_global(self.u, b)
+                b.assemblyBegin()
+                b.assemblyEnd()
 
     def jacobian(self, snes, x, A, P):
         with self.timers("volume assembly"):
@@ -66,8 +119,10 @@ def set_prefixed_options(prefix, options):
 def make_snes(problem, comm, solver, prefix="hc_", frictional=False):
     """A newtonls SNES with MUMPS LU by default; solver["petsc"] options
     (without prefix) override anything. Line search "auto": full Newton steps
-    ("basic"), except with friction, where the stick/slip switches make full
-    steps cycle and the backtracking "bt" converges."""
+    ("basic"), except with friction or deformable–deformable contact
+    (``frictional``), where stick/slip switches or a changing active set on a
+    curved master make full steps cycle (measured on Hertz: a period-3 cycle)
+    and the backtracking "bt" converges."""
     snes = PETSc.SNES().create(comm)
     snes.setOptionsPrefix(prefix)
     defaults = {

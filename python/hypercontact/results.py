@@ -280,6 +280,8 @@ class ResultsWriter:
         n_local = dfx.num_local_nodes(self.u.function_space)
         gap, pressure = np.zeros(n_local), np.zeros(n_local)
         for c in self.contacts:
+            if c.nodes is None:  # Gauss-point contact: no value per node
+                continue
             state = c.evaluate(self.u)
             gap[c.nodes] = state.gap
             pressure[c.nodes] += state.pressure

@@ -84,6 +84,7 @@ BUILTIN_LAWS = {
 BUILDER_SURFACES = {
     "box": {"xmin": 0, "xmax": 0, "ymin": 1, "ymax": 1, "zmin": 2, "zmax": 2},
     "shell_octant": {"inner": None, "outer": None, "xmin": 0, "ymin": 1, "zmin": 2},
+    "hemisphere": {"curved": None, "flat": 2, "xmin": 0, "ymin": 1},
 }
 
 
@@ -112,6 +113,9 @@ LENGTH = (lambda x: x <= MAX_LENGTH, f"at most {MAX_LENGTH:g}")
 COORDINATES = (lambda v: all(abs(c) <= MAX_LENGTH for c in v), f"coordinates of at most {MAX_LENGTH:g} in magnitude")
 MAGNITUDE = (lambda x: _magnitude_ok(x), "0 or a magnitude from 1e-100 to 1e+100")
 PATH = (lambda x: x != "" and _path_ok(x), "a non-empty path without NUL characters, each name at most 255 bytes")
+GRADING = (lambda v: all(1.0 <= abs(g) <= 4.0 for g in v),
+           "three numbers g with 1 <= |g| <= 4 (per axis: g > 1 clusters the cells towards the min side, "
+           "g < -1 towards the max side; the hemisphere uses the first for x and y, the third towards its pole)")
 AXES = (lambda x: len(x) > 0 and set(x) <= {"x", "y", "z"}, 'a non-empty subset of ["x", "y", "z"]')
 
 SCHEMA = {
@@ -125,6 +129,7 @@ SCHEMA = {
         "origin": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "n": Key("integer", 4, POSITIVE),
         "m": Key("integer", 4, POSITIVE),
+        "grading": Key("vector", [1.0, 1.0, 1.0], GRADING),
         "file": Key("string", "", (lambda x: _path_ok(x), "a path without NUL characters, each name at most "
                                                            "255 bytes")),
     },
@@ -132,6 +137,24 @@ SCHEMA = {
         "law": Key("string", REQUIRED),
         "parameters": Key("table", {}),
     },
+    "body": [{
+        "name": Key("string", REQUIRED, (lambda x: re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", x) is not None,
+                                         "a name of letters, digits and _ (it prefixes the body's surfaces)")),
+        "builder": Key("string", "box", (lambda x: x in ("box", "shell_octant", "hemisphere"),
+                                          '"box", "shell_octant" or "hemisphere"')),
+        "size": Key("vector", [1.0, 1.0, 1.0], (_positive_vec, "all sizes > 0"), COORDINATES),
+        "origin": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
+        "n": Key("integer", 4, POSITIVE),
+        "m": Key("integer", 4, POSITIVE),
+        "inner_radius": Key("number", 95.0, POSITIVE, LENGTH),
+        "thickness": Key("number", 1.0, POSITIVE, LENGTH),
+        "radius": Key("number", 1.0, POSITIVE, LENGTH),
+        "grading": Key("vector", [1.0, 1.0, 1.0], GRADING),
+        "material": {
+            "law": Key("string", REQUIRED),
+            "parameters": Key("table", {}),
+        },
+    }],
     "discretisation": {
         "degree": Key("integer", 1, (lambda x: x in (1, 2), "1 or 2")),
         "quadrature_degree": Key("integer", 2, (lambda x: 1 <= x <= MAX_QUADRATURE_DEGREE,
@@ -159,7 +182,13 @@ SCHEMA = {
     "contact": [{
         "name": Key("string", REQUIRED),
         "surface": Key("string", REQUIRED),
-        "obstacle": Key("string", REQUIRED, (lambda x: x in ("plane", "box"), '"plane" or "box"')),
+        "obstacle": Key("string", REQUIRED, (lambda x: x in ("plane", "box", "surface"),
+                                             '"plane", "box" (rigid) or "surface" (a deformable body\'s surface)')),
+        "master": Key("string", ""),  # a surface name, or several joined by "+"
+        "passes": Key("integer", 1, (lambda x: x in (1, 2), "1 (single pass, the paper) or 2 (two-pass)")),
+        "integration": Key("string", "nodal", (lambda x: x in ("nodal", "gauss"),
+                                               '"nodal" (the paper) or "gauss" (Gauss points of the slave facets)')),
+        "capture": Key("number", 0.0, NON_NEGATIVE, LENGTH),
         "point": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "normal": Key("vector", [0.0, 0.0, 1.0], (lambda v: 1e-100 <= math.hypot(*v) <= 1e100,
                                                   "a non-zero vector (length from 1e-100 to 1e+100)")),
@@ -263,8 +292,13 @@ def _validate(data, schema, path):
     return out
 
 
-def _check_mesh(mesh):
+def _check_mesh(mesh, where="mesh"):
     builder = mesh["builder"]
+    if builder not in ("box", "hemisphere") and mesh["grading"] != [1.0, 1.0, 1.0]:
+        _fail(f"{where}.grading", f"grading applies to the box and hemisphere builders, not {builder!r}")
+    if builder == "hemisphere" and min(mesh["grading"]) < 1.0:
+        _fail(f"{where}.grading", f"the hemisphere's grading clusters cells towards its pole only: expected "
+              f"numbers >= 1, found {mesh['grading']}")
     if builder == "box":
         size = mesh["size"]
         if min(size) < 1e-4 * max(size):
@@ -306,12 +340,12 @@ def _check_probe_in_body(path, point, mesh):
                   f"{r:g} <= |x| <= {r + t:g} (mesh.inner_radius, mesh.thickness)")
 
 
-def _check_parameters(material, formulation):
+def _check_parameters(material, formulation, where="material"):
     """Built-in laws: exactly their parameters, typed and in range; any law:
     numbers finite (K = inf only for the incompressible limit)."""
     law, params = material["law"], material["parameters"]
     for key, value in params.items():
-        path = f"material.parameters.{key}"
+        path = f"{where}.parameters.{key}"
         if isinstance(value, list):
             if not all(_finite(v) and _magnitude_ok(v) for v in value):
                 _fail(path, f"expected a number, a string, true/false or a list of finite numbers "
@@ -331,15 +365,15 @@ def _check_parameters(material, formulation):
             if key not in expected:
                 close = difflib.get_close_matches(key, list(expected), n=1)
                 hint = f"; did you mean '{close[0]}'?" if close else ""
-                _fail(f"material.parameters.{key}", f"unknown parameter of {law} (expected "
+                _fail(f"{where}.parameters.{key}", f"unknown parameter of {law} (expected "
                       f"{', '.join(expected)}){hint}")
         for key, default in expected.items():
             if key not in params:
                 if default is None:
-                    _fail(f"material.parameters.{key}", f"missing (required by {law})")
+                    _fail(f"{where}.parameters.{key}", f"missing (required by {law})")
                 params[key] = default
         for key, value in params.items():
-            path = f"material.parameters.{key}"
+            path = f"{where}.parameters.{key}"
             if key == "i2":
                 if value not in ("usual", "paper"):
                     _fail(path, f'expected "usual" or "paper", found {_describe(value)}')
@@ -348,39 +382,39 @@ def _check_parameters(material, formulation):
             elif key == "K" and not value > 0:
                 _fail(path, f"expected a bulk modulus > 0 (inf: incompressible), found {_describe(value)}")
         if law == "neo_hookean" and not params["mu"] > 0:
-            _fail("material.parameters.mu", f"expected a shear modulus > 0, found {_describe(params['mu'])}")
+            _fail(f"{where}.parameters.mu", f"expected a shear modulus > 0, found {_describe(params['mu'])}")
         if law == "mooney_rivlin":
             a1, a2 = params["alpha1"], params["alpha2"]
             mu, formula = (2 * (a1 + a2), "2(alpha1 + alpha2)") if params["i2"] == "usual" else \
                 (2 * a1 + 8 * a2, "2 alpha1 + 8 alpha2")
             if not mu > 0:
-                _fail("material.parameters", f"the small-strain shear modulus {formula} must be > 0, "
+                _fail(f"{where}.parameters", f"the small-strain shear modulus {formula} must be > 0, "
                       f"found {mu:g} (alpha1 = {a1:g}, alpha2 = {a2:g}, i2 = {params['i2']!r})")
     K = params.get("K")
     if _num(K) and math.isinf(K) and formulation != "mixed":
-        _fail("material.parameters.K", 'K = inf (incompressible) needs discretisation.formulation = "mixed"')
+        _fail(f"{where}.parameters.K", 'K = inf (incompressible) needs discretisation.formulation = "mixed"')
 
 
-def _check_law(material, base_dir):
+def _check_law(material, base_dir, where="material"):
     law = material["law"]
     if not law.startswith("python:"):
         return  # a built-in law, or a name for the function a driver script passes to Simulation
     parts = law.split(":")
     if len(parts) != 3 or not parts[1] or not parts[2]:
-        _fail("material.law", f"expected 'python:FILE.py:FUNCTION', found {_describe(law)}")
+        _fail(f"{where}.law", f"expected 'python:FILE.py:FUNCTION', found {_describe(law)}")
     _, path, func = parts
     if not _path_ok(path):
-        _fail("material.law", f"expected a file path without NUL characters, each name at most 255 bytes, "
+        _fail(f"{where}.law", f"expected a file path without NUL characters, each name at most 255 bytes, "
               f"found {_describe(path)}")
     if not func.isidentifier():
-        _fail("material.law", f"'{_printable(func, 60)}' is not a Python function name")
+        _fail(f"{where}.law", f"'{_printable(func, 60)}' is not a Python function name")
     f = Path(path)
     if not f.is_absolute():
         f = (base_dir / f).resolve()
-    if not _is_file(f, "material.law", "file"):
-        _fail("material.law", f"file '{f}' does not exist")
+    if not _is_file(f, f"{where}.law", "file"):
+        _fail(f"{where}.law", f"file '{f}' does not exist")
     if f.suffix != ".py":
-        _fail("material.law", f"file '{f}' is not a Python file (.py)")
+        _fail(f"{where}.law", f"file '{f}' is not a Python file (.py)")
     material["law"] = f"python:{f}:{func}"
 
 
@@ -402,19 +436,28 @@ def _check_discretisation(scene):
                   f"found {disc['degree']}")
 
 
+def _check_surface_name(path, name, surfaces):
+    if name not in surfaces:
+        close = difflib.get_close_matches(name, list(surfaces), n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        _fail(path, f"the mesh has no surface {_printable(repr(name), 60)} "
+              f"(it has {', '.join(sorted(surfaces))}){hint}")
+
+
 def _check_surfaces(scene):
     """Surface names of the built-in meshes; loads that would do no work."""
     surfaces = BUILDER_SURFACES.get(scene["mesh"]["builder"])
     if surfaces is None:
         return  # a mesh file: its surfaces are known once it is read
+    surfaces = dict(surfaces)
+    for body in scene["body"]:
+        surfaces.update({f"{body['name']}.{k}": v for k, v in BUILDER_SURFACES[body["builder"]].items()})
     for section in ("bc", "pressure", "traction", "contact"):
         for i, entry in enumerate(scene[section]):
-            name = entry["surface"]
-            if name not in surfaces:
-                close = difflib.get_close_matches(name, list(surfaces), n=1)
-                hint = f"; did you mean '{close[0]}'?" if close else ""
-                _fail(f"{section}[{i}].surface", f"the mesh has no surface {_printable(repr(name), 60)} "
-                      f"(it has {', '.join(sorted(surfaces))}){hint}")
+            _check_surface_name(f"{section}[{i}].surface", entry["surface"], surfaces)
+            if section == "contact" and entry["obstacle"] == "surface":
+                for name in entry["master"].split("+"):
+                    _check_surface_name(f"{section}[{i}].master", name, surfaces)
     seen = {}
     for i, pr in enumerate(scene["pressure"]):
         name = pr["surface"]
@@ -476,6 +519,57 @@ def _petsc_types():
     return _PETSC_TYPES
 
 
+def _check_bodies(scene, base_dir):
+    """[[body]] entries: unique names, a built-in main mesh, their own
+    materials checked like [material]."""
+    if scene["body"] and scene["mesh"]["builder"] == "file":
+        _fail("body", 'several bodies need a built-in mesh.builder ("box" or "shell_octant"), found "file"')
+    if scene["body"] and scene["discretisation"]["formulation"] == "mixed":
+        _fail("discretisation.formulation", 'several bodies need the "displacement" or "sri" formulation, '
+              'found "mixed"')
+    names = []
+    for i, body in enumerate(scene["body"]):
+        where = f"body[{i}]"
+        if body["name"] in names:
+            _fail(f"{where}.name", f"duplicate body name {body['name']!r}")
+        names.append(body["name"])
+        _check_mesh({**body, "file": ""}, where) if body["builder"] != "box" else None
+        if body["builder"] == "box" and min(body["size"]) < 1e-4 * max(body["size"]):
+            _fail(f"{where}.size", f"the smallest length must be at least 1e-4 × the largest, found {body['size']}")
+        if body["builder"] == "shell_octant" and body["n"] % 2:
+            _fail(f"{where}.n", f"the shell_octant builder needs an even n, found {body['n']}")
+        cells = body["n"] * body["n"] * body["m"]
+        if cells > MAX_CELLS:
+            _fail(f"{where}.n", f"n = {body['n']}, m = {body['m']} make {cells:.3g} hexahedra, more than "
+                  f"{MAX_CELLS:.0e}")
+        _check_law(body["material"], base_dir, f"{where}.material")
+        _check_parameters(body["material"], scene["discretisation"]["formulation"], f"{where}.material")
+        if scene["discretisation"]["formulation"] != "displacement" and body["material"]["law"] not in BUILTIN_LAWS:
+            _fail(f"{where}.material.law", f"formulation {scene['discretisation']['formulation']!r} needs a "
+                  f"built-in law ({', '.join(BUILTIN_LAWS)}), found {_describe(body['material']['law'])}")
+
+
+def _check_contact_kind(c, where):
+    """Keys that belong to one kind of contact only."""
+    if c["obstacle"] == "surface":
+        if not c["master"]:
+            _fail(f"{where}.master", 'obstacle = "surface" needs the master surface\'s name '
+                  '(e.g. "punch.zmin")')
+        if c["surface"] in c["master"].split("+"):
+            _fail(f"{where}.master", f"the master surface must differ from the slave surface "
+                  f"({c['surface']!r}); self-contact is not supported")
+        if c["passes"] == 2 and "+" in c["master"]:
+            _fail(f"{where}.passes", "two-pass contact needs a single master surface (one name, no '+')")
+        if c["mu"] > 0 and (c["passes"] == 2 or c["integration"] == "gauss"):
+            _fail(f"{where}.mu", "friction against a deformable surface needs passes = 1 and "
+                  'integration = "nodal"')
+    else:
+        for key, default in (("master", ""), ("passes", 1), ("integration", "nodal"), ("capture", 0.0)):
+            if c[key] != default:
+                _fail(f"{where}.{key}", f"applies to obstacle = \"surface\" only (this contact's obstacle "
+                      f"is {c['obstacle']!r})")
+
+
 def _check_consistency(scene, base_dir):
     mesh = scene["mesh"]
     if mesh["builder"] == "file":
@@ -492,6 +586,7 @@ def _check_consistency(scene, base_dir):
     _check_mesh(mesh)
     _check_law(scene["material"], base_dir)
     _check_parameters(scene["material"], scene["discretisation"]["formulation"])
+    _check_bodies(scene, base_dir)
     _check_discretisation(scene)
     _check_surfaces(scene)
     _check_solver(scene["solver"])
@@ -504,6 +599,7 @@ def _check_consistency(scene, base_dir):
             _fail(f"contact[{i}].name", "expected a non-empty name (it names the CSV columns)")
         if names.count(c["name"]) > 1:
             _fail(f"contact[{i}].name", f"duplicate contact name {_printable(repr(c['name']), 60)}")
+        _check_contact_kind(c, f"contact[{i}]")
         if c["obstacle"] == "box" and not all(l < h for l, h in zip(c["lo"], c["hi"])):
             _fail(f"contact[{i}].hi", f"box needs lo < hi in every coordinate, found lo={c['lo']} hi={c['hi']}")
         if c["obstacle"] == "box":
@@ -517,7 +613,8 @@ def _check_consistency(scene, base_dir):
         if not _finite_vec3(point):
             _fail(f"output.probes.{name}", f"expected a list of three finite numbers, found {_describe(point)}")
         scene["output"]["probes"][name] = [float(v) for v in point]
-        _check_probe_in_body(f"output.probes.{name}", scene["output"]["probes"][name], mesh)
+        if not scene["body"]:  # with several bodies, Probe checks for a node when the mesh exists
+            _check_probe_in_body(f"output.probes.{name}", scene["output"]["probes"][name], mesh)
     if steps["control"] != "load":
         if steps["stop_probe"] not in scene["output"]["probes"]:
             _fail("steps.stop_probe", f"{steps['control']} control needs a probe of output.probes "

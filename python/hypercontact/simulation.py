@@ -14,6 +14,7 @@ from . import geometry
 from .checkpoint import Checkpoint
 from .contact import RigidContact
 from .friction import FrictionalRigidContact
+from .surface_contact import SurfaceContact
 from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
 from .continuation import step as continuation_step
 from .forms import loads, materials, volume
@@ -121,21 +122,41 @@ class Simulation:
         R, J, u_unknown, v_unknown, mat_desc, self.stress = self._build_volume(law)
         self.bcs, constrained = self._build_constraints()
         R, J = self._add_loads(R, J, u_unknown, v_unknown)
-        self.contacts = [(FrictionalRigidContact if c["mu"] > 0 else RigidContact)(
-            c, self.V, self.body.facet_tags, self._tag(c["surface"], f"contact[{i}].surface"), constrained)
-            for i, c in enumerate(sc["contact"])]
+        self.contacts = []
+        for i, c in enumerate(sc["contact"]):
+            slave = self._tag(c["surface"], f"contact[{i}].surface")
+            if c["obstacle"] != "surface":
+                kind = FrictionalRigidContact if c["mu"] > 0 else RigidContact
+                self.contacts.append(kind(c, self.V, self.body.facet_tags, slave, constrained))
+                continue
+            if sc["steps"]["control"] != "load":
+                raise SceneError(f"scene key 'contact[{i}].obstacle': contact with a deformable surface needs "
+                                 "steps.control = \"load\" (continuation with it is not supported yet)")
+            master = [self._tag(m, f"contact[{i}].master") for m in c["master"].split("+")]
+            self.contacts.append(SurfaceContact(c, self.V, self.body.facet_tags, [slave], master, constrained))
+            if c["passes"] == 2:  # two-pass: each surface is slave once
+                self.contacts.append(SurfaceContact(c, self.V, self.body.facet_tags, master, [slave], constrained,
+                                                    name=f"{c['name']}_pass2"))
         size = self.comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in sc["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
         self.snes = None  # built by the load-control driver only
         self.bordered = None  # built by the continuation driver only
         self.active_sets, self.update_norms = [], []
-        n_rigid, n_p = len(self.contacts), len(sc["pressure"])
+        n_rigid, n_p = sum(c["obstacle"] != "surface" for c in sc["contact"]), len(sc["pressure"])
         n_t, n_b, n_m = len(sc["traction"]), len(sc["body_force"]), len(self._bc_motion)
         mus = sorted({c["mu"] for c in sc["contact"] if c["mu"] > 0})
         friction = f"Coulomb friction μ = {', '.join(f'{m:g}' for m in mus)}" if mus else "frictionless"
         self.effects = [mat_desc, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})"
-                                   if n_rigid else "no contact")]
+                                   if n_rigid else "no rigid contact")]
+        for c in sc["contact"]:
+            if c["obstacle"] == "surface":
+                self.effects.append(f"contact {c['surface']} → {c['master']} ("
+                                    f"{'two-pass' if c['passes'] == 2 else 'single-pass'}, "
+                                    f"{'nodal' if c['integration'] == 'nodal' else 'Gauss-point'} integration, "
+                                    f"{'frictionless' if c['mu'] == 0 else 'μ = %g' % c['mu']})")
+        if not sc["contact"]:
+            self.effects[1] = "no contact"
         for n, what in [(n_p, "follower pressure"), (n_t, "traction"), (n_b, "body force"),
                         (n_m, "prescribed displacement")]:
             if n:
@@ -144,6 +165,11 @@ class Simulation:
                              "displacement": "displacement control"}[sc["steps"]["control"]])
 
     def _build_body(self, mesh):
+        if self.scene["body"] or any(g != 1.0 for g in mesh["grading"]):
+            names = ["body"] + [b["name"] for b in self.scene["body"]]
+            if "body" in names[1:]:
+                raise SceneError("scene key 'body': the name 'body' is taken by the [mesh] body")
+            return geometry.build_bodies(self.comm, [("body", mesh)] + [(b["name"], b) for b in self.scene["body"]])
         if mesh["builder"] == "file":
             return geometry.read_msh(self.comm, mesh["file"])
         if mesh["builder"] == "shell_octant":
@@ -199,12 +225,49 @@ class Simulation:
         self.V = dfx.vector_space(mesh, disc["degree"])
         self.u = self.w = dfx.fem.Function(self.V, name="displacement")
         self._u_dofs = None
+        if sc["body"]:
+            return self._build_several_volumes(law, psi, params, desc)
         if disc["formulation"] == "sri":
             R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
             desc += ", selective reduced integration"
         else:
             R, J = volume.displacement_forms(self.u, psi, params, qdeg)
         return R, J, self.u, ufl.TestFunction(self.V), desc, first_piola_stress(psi, **params)
+
+    def _build_several_volumes(self, law, psi, params, desc):
+        """Volume forms summed over the bodies, each with its own law on its
+        own cells; the stress for the results picked per cell by body."""
+        sc = self.scene
+        disc = sc["discretisation"]
+        dx = ufl.Measure("dx", domain=self.body.mesh, subdomain_data=self.body.cell_tags)
+        laws = [(law, psi, params, sc["material"]["law"], desc)]
+        for b in sc["body"]:
+            b_psi, b_params, b_desc = resolve_material(b["material"])
+            laws.append((None, b_psi, b_params, b["material"]["law"], b_desc))
+        R = J = None
+        stresses = []
+        DG0 = dfx.fem.FunctionSpace(self.body.mesh, ("DG", 0))
+        for (user_law, b_psi, b_params, name, _), (region, tag) in zip(laws, self.body.regions.items()):
+            if disc["formulation"] == "sri":
+                iso = {k: v for k, v in b_params.items() if k != "K"}
+                Rb, Jb = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso, b_params["K"],
+                                                        disc["quadrature_degree"], dx(tag))
+            else:
+                Rb, Jb = volume.displacement_forms(self.u, b_psi, b_params, disc["quadrature_degree"], dx(tag))
+            R, J = (Rb, Jb) if R is None else (R + Rb, J + Jb)
+            chi = dfx.fem.Function(DG0)
+            chi.x.array[:] = 0.0
+            chi.x.array[self.body.cell_tags.indices[self.body.cell_tags.values == tag]] = 1.0
+            chi.x.scatter_forward()
+            stresses.append((chi, first_piola_stress(b_psi, **b_params)))
+
+        def stress(u):
+            return sum(chi * P(u) for chi, P in stresses)
+
+        text = "; ".join(f"{region}: {d}" for (_, _, _, _, d), region in zip(laws, self.body.regions))
+        if disc["formulation"] == "sri":
+            text += ", selective reduced integration"
+        return R, J, self.u, ufl.TestFunction(self.V), f"{len(laws)} bodies ({text})", stress
 
     def _build_constraints(self):
         """Dirichlet conditions u_a = λ × motion_a on the fixed components,
@@ -293,6 +356,33 @@ class Simulation:
         for c in self.contacts:
             c.set_load_factor(lam)
 
+    def update_pairing(self, fresh):
+        """Deformable contacts: with ``fresh``, search at the current state
+        and make it the pairing; otherwise (after a converged solve) check
+        whether a point has a candidate facet outside the pairing and add it.
+        A changed pairing rebuilds the matrix pattern. Returns whether it
+        changed."""
+        surface = self.problem.global_contacts
+        if not surface:
+            return False
+        changed = False
+        with self.timers("contact search"):
+            for c in surface:
+                if fresh:
+                    new = c.search(c.current_coordinates(self.u))
+                    same = c.candidates is not None and all(
+                        np.array_equal(a, b) for a, b in zip(new, c.candidates))
+                    if not self.comm.allreduce(bool(same), op=MPI.LAND):
+                        c.candidates = new
+                        changed = True
+                else:
+                    changed |= c.refresh_pairing(self.u)
+            if changed:
+                A = self.problem.rebuild_pattern()
+                if self.snes is not None:
+                    self.snes.setJacobian(self.problem.jacobian, A)
+        return changed
+
     def solve_step(self):
         """One Newton solve at the current load factor: (converged, its, norms, reason)."""
         x = self.problem.x
@@ -377,7 +467,8 @@ class Simulation:
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
         self.snes = make_snes(self.problem, self.comm, self.scene["solver"],
-                              frictional=any(c["mu"] > 0 for c in self.scene["contact"]))
+                              frictional=any(c["mu"] > 0 or c["obstacle"] == "surface"
+                                             for c in self.scene["contact"]))
         self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0
@@ -390,7 +481,16 @@ class Simulation:
         while lam < 1.0 - 1e-12:
             dlam = min(dlam, 1.0 - lam)
             self.set_load_factor(lam + dlam)
+            self.update_pairing(fresh=True)
             ok, its, norms, reason = self.solve_step()
+            for _ in range(5 if ok else 0):
+                # a point found a master facet outside the pattern: solve again with it
+                if not self.update_pairing(fresh=False):
+                    break
+                ok, more, norms, reason = self.solve_step()
+                its += more
+                if not ok:
+                    break
             if ok:
                 lam += dlam
                 self._lam = lam

@@ -346,6 +346,25 @@ TEST(NodeToSurface, OpenContactIsZero) {
   EXPECT_LE(touching.residual.norm(), 1e-10);
 }
 
+TEST(NodeToSurface, TouchToleranceClosesRoundingLevelGaps) {
+  // Surfaces meshed in touch have g = ±rounding: with touch > g > 0 the element is closed and
+  // its tangent carries the contact stiffness w ε_N n ⊗ n at the slave node; without it, zero.
+  const Eigen::Vector3d x = point_at(flat_quad, {0.1, -0.2}, 1e-13);
+  const FacetProjection p = project_to_facet(flat_quad, x);
+  const SurfaceContact open = node_to_surface(single(x), one_node, flat_quad, p, w, eps_n);
+  EXPECT_FALSE(open.closed);
+  EXPECT_TRUE(open.tangent.isZero(0.0));
+  const SurfaceContact touched = node_to_surface(single(x), one_node, flat_quad, p, w, eps_n, 1e-10);
+  EXPECT_TRUE(touched.closed);
+  const Eigen::Matrix3d expected = w * eps_n * open.normal * open.normal.transpose();
+  EXPECT_LT((touched.tangent.topLeftCorner<3, 3>() - expected).cwiseAbs().maxCoeff(),
+            1e-9 * expected.cwiseAbs().maxCoeff());
+  EXPECT_GT(node_to_surface_energy(single(x), one_node, flat_quad, w, eps_n, 1e-10), 0.0);
+  EXPECT_EQ(node_to_surface_energy(single(x), one_node, flat_quad, w, eps_n), 0.0);
+  EXPECT_THROW(node_to_surface(single(x), one_node, flat_quad, p, w, eps_n, -1.0),
+               std::invalid_argument);
+}
+
 TEST(NodeToSurface, GivenProjectionEqualsInternalOne) {
   const Eigen::Vector3d x = point_at(warped_quad, {0.1, 0.4}, -0.03);
   const SurfaceContact a = node_to_surface(single(x), one_node, warped_quad, w, eps_n);

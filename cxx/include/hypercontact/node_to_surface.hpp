@@ -52,17 +52,23 @@ struct SurfaceContact {
 /// inconsistent (local index out of range) or the facet is degenerate; std::runtime_error if
 /// the contact is closed at a face point where H is not positive definite (the slave point at a
 /// centre of curvature of the facet: the tangent does not exist). Never returns NaN.
+///
+/// `touch` ≥ 0 widens "closed" to g ≤ touch: a caller passes a rounding-level length (e.g.
+/// 1e-10 × the facet size) so that surfaces meshed exactly in touch (g = ±1e-17) are closed and
+/// the tangent holds the contact stiffness from the first iteration.
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n);
+                               double w, double eps_n, double touch = 0.0);
 
 /// The same, projecting x_s onto the facet first (project_to_facet).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, double w, double eps_n);
 
-/// The element energy W defined above (projecting x_s onto the facet first).
+/// The element energy W defined above (projecting x_s onto the facet first); closed for
+/// g ≤ touch as node_to_surface.
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
-                              const NodeCoordinates& master, double w, double eps_n);
+                              const NodeCoordinates& master, double w, double eps_n,
+                              double touch = 0.0);
 
 /// The closest of several candidate facets to a slave point (narrow phase).
 struct ClosestFacet {

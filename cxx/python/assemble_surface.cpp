@@ -1,0 +1,96 @@
+// Bindings of assemble_surface.hpp; b and A are petsc4py objects or None.
+#include <caster_petsc.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <hypercontact/assemble_surface.hpp>
+
+#include "array.hpp"
+
+namespace hypercontact::python {
+
+namespace {
+template <typename T>
+py::array_t<T> rows(const std::vector<T>& v, py::ssize_t width) {
+  py::array_t<T> a(width == 1 ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size())}
+                              : std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size()) / width, width});
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+}  // namespace
+
+void declare_assemble_surface(py::module_& m) {
+  py::class_<SurfaceContactState>(m, "SurfaceContactState", "Output of assemble_surface_contact")
+      .def_property_readonly("facet", [](const SurfaceContactState& s) { return rows(s.facet, 1); })
+      .def_property_readonly("feature", [](const SurfaceContactState& s) { return rows(s.feature, 1); })
+      .def_property_readonly("status", [](const SurfaceContactState& s) { return rows(s.status, 1); })
+      .def_property_readonly("xi", [](const SurfaceContactState& s) { return rows(s.xi, 2); })
+      .def_property_readonly("gap", [](const SurfaceContactState& s) { return rows(s.gap, 1); })
+      .def_property_readonly("pressure", [](const SurfaceContactState& s) { return rows(s.pressure, 1); })
+      .def_property_readonly("normal", [](const SurfaceContactState& s) { return rows(s.normal, 3); })
+      .def_readonly("force", &SurfaceContactState::force,
+                    "force of the master on the slave body, -sum of the slave residuals (3,)")
+      .def_readonly("num_closed", &SurfaceContactState::num_closed);
+
+  auto input = [](const RealArray& x, const IndexArray& point_nodes, const RealArray& point_weights,
+                  const RealArray& point_area, const IndexArray& facets,
+                  const IndexArray& edge_neighbour, const IndexArray& offsets,
+                  const IndexArray& candidates, double eps_n, const IndexArray& dofs) {
+    check_shape(x, "x", {any, 3});
+    check_shape(point_area, "point_area", {any});
+    check_shape(point_nodes, "point_nodes", {point_area.shape(0), 4});
+    check_shape(point_weights, "point_weights", {point_area.shape(0), 4});
+    check_shape(facets, "facets", {any, 4});
+    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), 4});
+    check_shape(offsets, "offsets", {point_area.shape(0) + 1});
+    check_shape(candidates, "candidates", {any});
+    check_shape(dofs, "dofs", {x.shape(0), 3});
+    return SurfaceContactInput{as_span(x),       as_span(point_nodes), as_span(point_weights),
+                               as_span(point_area), as_span(facets),   as_span(edge_neighbour),
+                               as_span(offsets), as_span(candidates),  as_span(dofs),
+                               eps_n};
+  };
+  const char* doc_args =
+      "x (nn, 3) current coordinates of the contact nodes; point_nodes, point_weights (np, 4);\n"
+      "point_area (np,); facets, edge_neighbour (nf, 4); offsets (np + 1,), candidates: the broad\n"
+      "phase's CSR; eps_n; dofs (nn, 3) int32 global indices, -1 = constrained (skipped).";
+  m.def(
+      "evaluate_surface_contact",
+      [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
+              const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
+              double eps_n, const IndexArray& dofs) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs), nullptr,
+                                        nullptr);
+      },
+      py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
+      py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
+      py::arg("eps_n"), py::arg("dofs"),
+      (std::string("Pairing, gaps and pressures of every slave point, no assembly.\n") + doc_args)
+          .c_str());
+  m.def(
+      "assemble_surface_residual",
+      [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
+              const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
+              double eps_n, const IndexArray& dofs, Vec b) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs), b, nullptr);
+      },
+      py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
+      py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
+      py::arg("eps_n"), py::arg("dofs"), py::arg("b"),
+      (std::string("Adds the residual into the petsc4py Vec b (VecSetValues, global, ADD);\n"
+                   "call b.assemblyBegin/End afterwards.\n") + doc_args).c_str());
+  m.def(
+      "assemble_surface_tangent",
+      [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
+              const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
+              double eps_n, const IndexArray& dofs, Mat A) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs), nullptr, A);
+      },
+      py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
+      py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
+      py::arg("eps_n"), py::arg("dofs"), py::arg("A"),
+      (std::string("Adds the tangent into the petsc4py Mat A (MatSetValues, global, ADD); call\n"
+                   "A.assemble() afterwards.\n") + doc_args).c_str());
+}
+
+}  // namespace hypercontact::python
