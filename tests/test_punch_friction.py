@@ -76,3 +76,64 @@ def test_friction_under_the_punch_lifts_more_on_the_base_less(coarse):
         assert -last["punch_fz"] > -ref["punch_fz"]  # and it takes more force to indent
     last = coarse["punch_mu0_1"][-1]
     assert last["edge_uz"] < ref["edge_uz"] and last["corner_uz"] < ref["corner_uz"]
+
+
+def test_assembled_tangent_is_the_derivative_of_the_residual(tmp_path):
+    """Newton's matrix with friction under the box punch (face, edges and
+    side walls), volume, normal contact with the base and Dirichlet
+    conditions included, against central differences of the assembled
+    residual, at a state with open, sticking and slipping nodes (≤ 1e-6
+    relative)."""
+    import numpy as np
+
+    from hypercontact import _dolfinx as dfx
+    from hypercontact.friction import OPEN, SLIP, STICK
+
+    sc = scene.load(ROOT / "scenes" / "punch_mu0.3_0.toml",
+                    ["mesh.n=4", "mesh.m=1", "output.xdmf=false", f"output.dir={tmp_path}"])
+    class Stop(Exception):
+        pass
+
+    def stop_after_three_steps(message):
+        if message.startswith("step   3"):
+            raise Stop
+
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(ResultsWriter, "draw_pictures", lambda self: {"skipped": "not drawn in this test"})
+        sim = Simulation(sc, MPI.COMM_SELF, log=stop_after_three_steps)
+        with pytest.raises(Stop):
+            sim.run()
+    # a step of indentation (Δλ = 0.25) against the history of the last converged step: some nodes slip
+    sim.set_load_factor(sim.contacts[0].lam_committed + 0.25)
+    assert sim.solve_step()[0]
+    P, x = sim.problem, sim.problem.x.copy()
+    sim.w.vector.copy(x)
+    fixed = np.concatenate([dfx.bc_dofs(bc) for bc in sim.bcs])
+    rng = np.random.default_rng(7)
+
+    def residual(xv):
+        b = P.b.duplicate()
+        P.residual(None, xv, b)
+        return b.array.copy()
+
+    for trial in range(3):
+        x0 = x.copy()
+        x0.array[:] += 1e-5 * rng.standard_normal(x.array.size)
+        x0.array[fixed] = x.array[fixed]
+        d = x.duplicate()
+        d.array[:] = rng.standard_normal(x.array.size)
+        d.array[fixed] = 0.0
+        residual(x0)
+        states = np.asarray(sim.contacts[0].last.state)
+        assert {OPEN, STICK, SLIP} <= set(states.tolist()), np.bincount(states)
+        P.jacobian(None, x0, P.A, P.A)
+        Ad = d.duplicate()
+        P.A.mult(d, Ad)
+        errors = []
+        for h in (1e-6, 1e-7):  # the smaller step, should the larger cross a stick–slip switch
+            xp, xm = x0.copy(), x0.copy()
+            xp.axpy(h, d)
+            xm.axpy(-h, d)
+            fd = (residual(xp) - residual(xm)) / (2 * h)
+            errors.append(np.linalg.norm(fd - Ad.array) / np.linalg.norm(fd))
+        assert min(errors) <= 1e-6, errors
