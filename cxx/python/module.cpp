@@ -8,6 +8,7 @@ void declare_contact_search(pybind11::module_& m);
 void declare_assemble_rigid(pybind11::module_& m);
 void declare_assemble_friction(pybind11::module_& m);
 void declare_assemble_surface(pybind11::module_& m);
+void declare_assemble_surface_friction(pybind11::module_& m);
 }  // namespace hypercontact::python
 
 PYBIND11_MODULE(_cpp, m) {
@@ -19,4 +20,5 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_assemble_rigid(m);
   hypercontact::python::declare_assemble_friction(m);
   hypercontact::python::declare_assemble_surface(m);
+  hypercontact::python::declare_assemble_surface_friction(m);
 }
