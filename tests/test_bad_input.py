@@ -27,7 +27,7 @@ def write_scene(tmp_path, old, new):
     ("n = 16", 'n = "16"', "'mesh.n': expected an integer, found '16'"),
     ("size = [40.0, 40.0, 10.0]", "size = [40.0, 40.0, -10.0]", "'mesh.size': expected all sizes > 0"),
     ('builder = "box"', 'builder = "file"\nfile = "no/such/plate.msh"', "no/such/plate.msh' does not exist"),
-    ("eps_n = 100.0", "eps_n = -1.0", "'contact[0].eps_n': expected > 0"),
+    ("eps_n = 100.0", "eps_n = -1.0", "'contact[0].eps_n': expected >= 0"),
     ('surface = "zmax"', 'surface = "top"', "'contact[0].surface': the mesh has no surface 'top'"),
     ("[steps]", "[stepz]", "'stepz': unknown key; did you mean 'steps'?"),
     ("K = 5.0", "K = 5.0, beta = 1", "'material.parameters.beta': unknown parameter"),

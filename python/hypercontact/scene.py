@@ -195,7 +195,9 @@ SCHEMA = {
         "lo": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "hi": Key("vector", [1.0, 1.0, 1.0], COORDINATES),
         "motion": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
-        "eps_n": Key("number", REQUIRED, POSITIVE, (lambda x: 1e-100 <= x <= 1e100, "from 1e-100 to 1e+100")),
+        "eps_n": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
+                                                   "0 (automatic: penalty_factor × M / h) or from 1e-100 to 1e+100")),
+        "penalty_factor": Key("number", 100.0, POSITIVE, (lambda x: 1e-6 <= x <= 1e12, "from 1e-6 to 1e12")),
         "mu": Key("number", 0.0, NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")),
         "eps_t": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
                                                    "0 (= eps_n) or from 1e-100 to 1e+100")),
@@ -549,8 +551,23 @@ def _check_bodies(scene, base_dir):
                   f"built-in law ({', '.join(BUILTIN_LAWS)}), found {_describe(body['material']['law'])}")
 
 
-def _check_contact_kind(c, where):
-    """Keys that belong to one kind of contact only."""
+def _law_of_surface(scene, surface):
+    """The [material] or [[body]].material that a surface belongs to."""
+    prefix = surface.split(".")[0] if "." in surface else None
+    for body in scene["body"]:
+        if body["name"] == prefix:
+            return body["material"], f"body.{prefix}.material"
+    return scene["material"], "material"
+
+
+def _check_contact_kind(c, where, scene=None):
+    """Keys that belong to one kind of contact only; an automatic penalty
+    needs a built-in law on the slave side (its small-strain modulus)."""
+    if scene is not None and c["eps_n"] == 0:
+        material, key = _law_of_surface(scene, c["surface"])
+        if material["law"] not in BUILTIN_LAWS:
+            _fail(f"{where}.eps_n", f"0 (automatic penalty) needs the slave body's small-strain modulus, "
+                  f"but its law ({_describe(material['law'])}, {key}) is not built in: give eps_n")
     if c["obstacle"] == "surface":
         if not c["master"]:
             _fail(f"{where}.master", 'obstacle = "surface" needs the master surface\'s name '
@@ -599,7 +616,7 @@ def _check_consistency(scene, base_dir):
             _fail(f"contact[{i}].name", "expected a non-empty name (it names the CSV columns)")
         if names.count(c["name"]) > 1:
             _fail(f"contact[{i}].name", f"duplicate contact name {_printable(repr(c['name']), 60)}")
-        _check_contact_kind(c, f"contact[{i}]")
+        _check_contact_kind(c, f"contact[{i}]", scene)
         if c["obstacle"] == "box" and not all(l < h for l, h in zip(c["lo"], c["hi"])):
             _fail(f"contact[{i}].hi", f"box needs lo < hi in every coordinate, found lo={c['lo']} hi={c['hi']}")
         if c["obstacle"] == "box":

@@ -17,6 +17,7 @@ from .friction import FrictionalRigidContact
 from .surface_contact import SurfaceContact
 from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
 from .continuation import step as continuation_step
+from . import penalty
 from .forms import loads, materials, volume
 from .problem import Problem, converged_reason_name, make_snes, residual_norms_of
 from .results import ResultsWriter, first_piola_stress
@@ -123,8 +124,11 @@ class Simulation:
         self.bcs, constrained = self._build_constraints()
         R, J = self._add_loads(R, J, u_unknown, v_unknown)
         self.contacts = []
+        self.penalties = []
         for i, c in enumerate(sc["contact"]):
             slave = self._tag(c["surface"], f"contact[{i}].surface")
+            if c["eps_n"] == 0:
+                self._automatic_penalty(c, slave)
             if c["obstacle"] != "surface":
                 kind = FrictionalRigidContact if c["mu"] > 0 else RigidContact
                 self.contacts.append(kind(c, self.V, self.body.facet_tags, slave, constrained))
@@ -157,12 +161,24 @@ class Simulation:
                                     f"{'frictionless' if c['mu'] == 0 else 'μ = %g' % c['mu']})")
         if not sc["contact"]:
             self.effects[1] = "no contact"
+        if self.penalties:
+            self.effects.append("automatic penalty (" + "; ".join(self.penalties) + ")")
         for n, what in [(n_p, "follower pressure"), (n_t, "traction"), (n_b, "body force"),
                         (n_m, "prescribed displacement")]:
             if n:
                 self.effects.append(f"{n} {what}{'s' if n > 1 else ''}")
         self.effects.append({"load": "load control", "arclength": "arc-length continuation",
                              "displacement": "displacement control"}[sc["steps"]["control"]])
+
+    def _automatic_penalty(self, c, slave_tag):
+        """ε_N = penalty_factor × M / h from the slave body's material (see
+        penalty.py), written into the contact's scene entry."""
+        prefix = c["surface"].split(".")[0] if "." in c["surface"] else None
+        material = next((b["material"] for b in self.scene["body"] if b["name"] == prefix), self.scene["material"])
+        eps, M, h = penalty.automatic_penalty(c["penalty_factor"], material["law"], material["parameters"],
+                                              self.V, self.body.facet_tags, slave_tag)
+        c["eps_n"] = eps
+        self.penalties.append(f"{c['name']}: ε_N = {eps:.4g} = {c['penalty_factor']:g} × M {M:.4g} / h {h:.4g}")
 
     def _build_body(self, mesh):
         if self.scene["body"] or any(g != 1.0 for g in mesh["grading"]):

@@ -1,0 +1,63 @@
+"""Automatic, unit-free penalty parameters.
+
+    ε_N = s · M / h,
+
+with s the scene's dimensionless ``penalty_factor``, M = K + 4/3 μ the
+small-strain P-wave modulus of the slave body's material (the stiffness of a
+column of material under a pressure on its end) and h = Σ V_e / Σ A_f the
+thickness of the layer of elements under the slave surface (the volume of the
+cells that touch the slave facets over the facets' area, reference
+configuration). The penalty pressure ε_N g for a penetration g then equals
+s × the stress that compresses that element layer by g: with s = 100 the
+penetration is about 1 % of the elastic compression of the first element
+layer. Both M and h scale with the units (MPa and mm, or Pa and m), so the
+same scene in either gives the same dimensionless results.
+"""
+import numpy as np
+import ufl
+from mpi4py import MPI
+
+from . import _dolfinx as dfx
+
+
+def p_wave_modulus(law, params):
+    """K + 4/3 μ of a built-in law at small strain."""
+    if law == "neo_hookean":
+        mu = params["mu"]
+    elif law == "mooney_rivlin":
+        a1, a2 = params["alpha1"], params["alpha2"]
+        mu = 2.0 * (a1 + a2) if params.get("i2", "usual") == "usual" else 2.0 * a1 + 8.0 * a2
+    else:
+        raise ValueError(f"automatic penalty: no small-strain modulus for law {law!r}")
+    return params["K"] + 4.0 / 3.0 * mu
+
+
+def layer_thickness(V, facet_tags, tag):
+    """h = Σ V_e / Σ A_f over the slave facets with tag and their cells."""
+    mesh = V.mesh
+    tdim = mesh.topology.dim
+    facets = dfx.facets_with_tag(facet_tags, tag)
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    f2c = mesh.topology.connectivity(tdim - 1, tdim)
+    n_owned = dfx.num_owned_cells(mesh)
+    cells = np.unique([f2c.links(f)[0] for f in facets]).astype(np.int32) if len(facets) else np.zeros(0, np.int32)
+    cells = cells[cells < n_owned]
+    DG0 = dfx.fem.FunctionSpace(mesh, ("DG", 0))
+    vol = dfx.assemble_vector_owned(dfx.compile_form(ufl.TestFunction(DG0) * ufl.dx))
+    with vol.localForm() as vl:
+        volume = float(vl.array_r[cells].sum())
+    vol.destroy()
+    one = dfx.constant(mesh, 1.0)
+    ds = dfx.facet_integration_measure(mesh, facet_tags, 2)
+    area = dfx.assemble_scalar(dfx.compile_form(one * ds(tag)), mesh.comm)
+    volume = mesh.comm.allreduce(volume, op=MPI.SUM)
+    if not area > 0:
+        raise ValueError("automatic penalty: the slave surface has no area")
+    return volume / area
+
+
+def automatic_penalty(factor, law, params, V, facet_tags, tag):
+    """(ε_N, M, h) for a slave surface (see the module docstring)."""
+    M = p_wave_modulus(law, params)
+    h = layer_thickness(V, facet_tags, tag)
+    return factor * M / h, M, h
