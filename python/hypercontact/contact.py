@@ -59,6 +59,11 @@ class RigidContact:
         self.num_slave_nodes = self.comm.allreduce(len(self.nodes), op=MPI.SUM)
         self.set_load_factor(0.0)
         self.state = None
+        # Augmented Lagrangian: one pressure per slave node, held fixed in a Newton solve and
+        # updated between solves (Uzawa); committed with the step, restored on a cut-back.
+        self.augmented = spec.get("enforcement", "penalty") == "augmented_lagrangian"
+        self.multipliers = np.zeros(len(self.nodes)) if self.augmented else np.zeros(0)
+        self.multipliers_committed = self.multipliers.copy()
 
     def set_load_factor(self, load_factor):
         self.load_factor = load_factor
@@ -69,17 +74,32 @@ class RigidContact:
 
     def add_residual(self, u, b_local):
         self.state = _cpp.assemble_rigid_residual(
-            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, b_local)
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, b_local,
+            self.multipliers)
 
     def add_tangent(self, u, A):
         _cpp.assemble_rigid_tangent(
-            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A)
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A, self.multipliers)
 
     def evaluate(self, u):
         """Gap, pressure and force of this rank's slave nodes, no assembly."""
         scratch = np.zeros(u.x.array.size)
         return _cpp.assemble_rigid_residual(
-            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, scratch)
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, scratch,
+            self.multipliers)
+
+    def max_penetration(self, u):
+        """Largest penetration ⟨−g⟩ over all slave nodes (all ranks)."""
+        gap = np.asarray(self.evaluate(u).gap)
+        local = float(max(0.0, -gap.min())) if len(gap) else 0.0
+        return self.comm.allreduce(local, op=MPI.MAX)
+
+    def augment(self, u):
+        """Uzawa update λ ← ⟨λ − ε_N g⟩ (the current pressures)."""
+        self.multipliers = np.ascontiguousarray(self.evaluate(u).pressure, dtype=float)
+
+    def restore_multipliers(self):
+        self.multipliers = self.multipliers_committed.copy()
 
     def active_set_signature(self):
         """(number of closed nodes, checksum of their global indices) at the
@@ -94,7 +114,9 @@ class RigidContact:
         return self.comm.allreduce(np.asarray(self.evaluate(u).force), op=MPI.SUM)
 
     def commit(self, u):
-        """Frictionless contact has no history."""
+        """Frictionless penalty contact has no history; the augmented
+        Lagrangian's multipliers are kept as the next step's start."""
+        self.multipliers_committed = self.multipliers.copy()
         return None
 
     def num_closed(self, u):

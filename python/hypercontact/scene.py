@@ -198,6 +198,10 @@ SCHEMA = {
         "eps_n": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
                                                    "0 (automatic: penalty_factor × M / h) or from 1e-100 to 1e+100")),
         "penalty_factor": Key("number", 100.0, POSITIVE, (lambda x: 1e-6 <= x <= 1e12, "from 1e-6 to 1e12")),
+        "enforcement": Key("string", "penalty", (lambda x: x in ("penalty", "augmented_lagrangian"),
+                                                 '"penalty" or "augmented_lagrangian"')),
+        "gap_tolerance": Key("number", 0.0, NON_NEGATIVE, LENGTH),
+        "max_augmentations": Key("integer", 20, (lambda x: 1 <= x <= 1000, "from 1 to 1000")),
         "mu": Key("number", 0.0, NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")),
         "eps_t": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
                                                    "0 (= eps_n) or from 1e-100 to 1e+100")),
@@ -563,6 +567,9 @@ def _law_of_surface(scene, surface):
 def _check_contact_kind(c, where, scene=None):
     """Keys that belong to one kind of contact only; an automatic penalty
     needs a built-in law on the slave side (its small-strain modulus)."""
+    if c["enforcement"] == "augmented_lagrangian" and (c["obstacle"] == "surface" or c["mu"] > 0):
+        _fail(f"{where}.enforcement", "the augmented Lagrangian is implemented for frictionless contact "
+              "with rigid obstacles (plane, box) only so far; use \"penalty\" here")
     if scene is not None and c["eps_n"] == 0:
         material, key = _law_of_surface(scene, c["surface"])
         if material["law"] not in BUILTIN_LAWS:

@@ -25,6 +25,8 @@ from .scene import SceneError
 from .timing import Timers
 
 AXIS = {"x": 0, "y": 1, "z": 2}
+#: contacts with a friction history (checkpointed: xi, t_old, lam_committed, dissipation, history_arrays)
+FRICTIONAL = (FrictionalRigidContact,)
 
 
 class StepFailure(RuntimeError):
@@ -132,6 +134,9 @@ class Simulation:
             if c["obstacle"] != "surface":
                 kind = FrictionalRigidContact if c["mu"] > 0 else RigidContact
                 self.contacts.append(kind(c, self.V, self.body.facet_tags, slave, constrained))
+                if c["enforcement"] == "augmented_lagrangian" and c["gap_tolerance"] == 0:
+                    # automatic: 1e-3 of the first element layer's thickness
+                    c["gap_tolerance"] = 1e-3 * penalty.layer_thickness(self.V, self.body.facet_tags, slave)
                 continue
             if sc["steps"]["control"] != "load":
                 raise SceneError(f"scene key 'contact[{i}].obstacle': contact with a deformable surface needs "
@@ -346,9 +351,11 @@ class Simulation:
         """The state after a converged step: solution, step controller, results so far."""
         with self.timers("output"):
             friction = {c.name: {"lam_committed": c.lam_committed, "dissipation": c.dissipation}
-                        for c in self.contacts if isinstance(c, FrictionalRigidContact)}
+                        for c in self.contacts if isinstance(c, FRICTIONAL)}
             for c in self.contacts:
-                if isinstance(c, FrictionalRigidContact):
+                if getattr(c, "augmented", False):
+                    arrays[f"multipliers_{c.name}"] = c.multipliers_committed
+                if isinstance(c, FRICTIONAL):
                     arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"] = c.xi, c.t_old
                     arrays.update({f"{k}_{c.name}": v for k, v in c.history_arrays().items()})
             state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
@@ -371,6 +378,36 @@ class Simulation:
             value.value = lam * motion
         for c in self.contacts:
             c.set_load_factor(lam)
+
+    def _augment(self, norms, reason):
+        """Augmented Lagrangian (Uzawa) around the Newton solve of a step:
+        while a contact's largest penetration exceeds its gap_tolerance,
+        set its multipliers to the current pressures and solve again (from
+        the converged state), at most max_augmentations times. Returns
+        (converged, extra Newton iterations, norms, reason); the number of
+        augmentations is kept in self.augmentations."""
+        contacts = [c for c in self.contacts if getattr(c, "augmented", False)]
+        self.augmentations, extra = 0, 0
+        if not contacts:
+            return True, 0, norms, reason
+        limit = max(c.spec["max_augmentations"] for c in contacts)
+        while True:
+            over = [c for c in contacts if c.max_penetration(self.u) > c.spec["gap_tolerance"]]
+            if not over:
+                return True, extra, norms, reason
+            if self.augmentations >= limit:
+                worst = max(over, key=lambda c: c.max_penetration(self.u) / c.spec["gap_tolerance"])
+                self.log(f"   augmented Lagrangian: contact {worst.name!r} still penetrates "
+                         f"{worst.max_penetration(self.u):.3g} > gap_tolerance {worst.spec['gap_tolerance']:.3g} "
+                         f"after {self.augmentations} augmentations (raise max_augmentations or eps_n)")
+                return False, extra, norms, "AUGMENTATION_LIMIT"
+            for c in contacts:
+                c.augment(self.u)
+            self.augmentations += 1
+            ok, its, norms, reason = self.solve_step()
+            extra += its
+            if not ok:
+                return False, extra, norms, reason
 
     def update_pairing(self, fresh):
         """Deformable contacts: with ``fresh``, search at the current state
@@ -435,7 +472,10 @@ class Simulation:
             self.w.x.array[:] = arrays["w"]
             self.sync_displacement()
             for c in self.contacts:
-                if isinstance(c, FrictionalRigidContact):
+                if getattr(c, "augmented", False):
+                    c.multipliers = np.asarray(arrays[f"multipliers_{c.name}"], dtype=float).copy()
+                    c.multipliers_committed = c.multipliers.copy()
+                if isinstance(c, FRICTIONAL):
                     c.xi, c.t_old = arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"]
                     c.lam_committed = state["friction"][c.name]["lam_committed"]
                     c.dissipation = state["friction"][c.name]["dissipation"]
@@ -508,6 +548,9 @@ class Simulation:
                 if not ok:
                     break
             if ok:
+                ok, more, norms, reason = self._augment(norms, reason)
+                its += more
+            if ok:
                 lam += dlam
                 self._lam = lam
                 cuts = 0
@@ -524,6 +567,9 @@ class Simulation:
                 self._save_checkpoint(writer, {"lam": lam, "dlam": dlam})
                 continue
             self.w.x.array[:] = u_saved
+            for c in self.contacts:
+                if getattr(c, "augmented", False):
+                    c.restore_multipliers()
             cuts += 1
             dlam *= 0.5
             self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "

@@ -22,10 +22,12 @@ struct RigidContactState {
 ///   b[dofs(i, k)] += r_i[k]   for dofs(i, k) ≥ 0.
 /// x: n × 3 current coordinates; area: n; dofs: n × 3 process-local unblocked dof indices,
 /// −1 marking a constrained dof that is skipped; b: local array (owned + ghost) of the residual.
+/// multipliers: augmented-Lagrangian pressures per node, or empty (see evaluate_rigid_contact).
 /// Throws std::out_of_range if a dof is ≥ b.size(), otherwise as evaluate_rigid_contact.
 RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<const double> x,
                                           std::span<const double> area, double eps_n,
-                                          std::span<const std::int32_t> dofs, std::span<double> b);
+                                          std::span<const std::int32_t> dofs, std::span<double> b,
+                                          std::span<const double> multipliers = {});
 
 /// Adds the contact tangent K_i = A_i ε_N (n_i ⊗ n_i + g_i ∂n_i/∂x) of every closed node:
 ///   MatSetValuesLocal(A, 3, dofs(i, :), 3, dofs(i, :), K_i, ADD_VALUES);
@@ -34,6 +36,7 @@ RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<co
 /// Throws std::runtime_error if PETSc reports an error.
 void assemble_rigid_tangent(const Obstacle& obstacle, std::span<const double> x,
                             std::span<const double> area, double eps_n,
-                            std::span<const std::int32_t> dofs, Mat A);
+                            std::span<const std::int32_t> dofs, Mat A,
+                            std::span<const double> multipliers = {});
 
 }  // namespace hypercontact

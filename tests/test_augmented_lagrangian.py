@@ -1,0 +1,66 @@
+"""Augmented Lagrangian (Uzawa) for rigid contact: the penetration reaches
+the gap tolerance whatever the penalty, in a bounded number of
+augmentations, and the contact force tends to the penalty-free limit."""
+import tomllib
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+from hypercontact import scene
+from hypercontact.simulation import Simulation
+
+from conftest import ROOT
+
+TOL = 1e-3  # mm: gap tolerance
+
+
+def run(tmp_path, factor, enforcement):
+    data = tomllib.loads((ROOT / "scenes" / "punch.toml").read_text())
+    data["mesh"].update(n=8, m=2)
+    data["output"]["xdmf"] = False
+    for c in data["contact"]:
+        c.pop("eps_n")
+        c.update(penalty_factor=factor, enforcement=enforcement, gap_tolerance=TOL, max_augmentations=30)
+    sc = scene.load(data, [f"output.dir={tmp_path}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    augmentations = []
+    solve = sim._augment
+
+    def counting(*args):
+        result = solve(*args)
+        augmentations.append(sim.augmentations)
+        return result
+
+    sim._augment = counting
+    writer = sim.run(out_dir=str(tmp_path))
+    return sim, writer, augmentations
+
+
+@pytest.mark.parametrize("factor", [1.0, 10.0, 100.0, 1000.0])
+def test_penetration_reaches_the_tolerance_for_four_decades_of_penalty(tmp_path, factor):
+    sim, writer, augmentations = run(tmp_path, factor, "augmented_lagrangian")
+    for c in sim.contacts:
+        assert c.max_penetration(sim.u) <= TOL
+    # bounded: fewer augmentations the stiffer the penalty, never the limit
+    assert max(augmentations) < 30
+    if factor >= 1000.0:
+        assert max(augmentations) <= 2
+
+
+def test_force_tends_to_the_penalty_free_limit(tmp_path):
+    """With augmentation, a soft penalty gives the force of a penalty 1000 × as stiff
+    (penetration ≤ 1e-3 mm in both) to 0.5 %; pure penalty with the soft one is off by more."""
+    _, w_soft_al, _ = run(tmp_path / "al", 1.0, "augmented_lagrangian")
+    _, w_stiff, _ = run(tmp_path / "stiff", 1000.0, "penalty")
+    _, w_soft, _ = run(tmp_path / "soft", 1.0, "penalty")
+    f_al, f_stiff, f_soft = (w.steps[-1]["punch_fz"] for w in (w_soft_al, w_stiff, w_soft))
+    assert abs(f_al - f_stiff) < 5e-3 * abs(f_stiff)
+    assert abs(f_soft - f_stiff) > 2 * abs(f_al - f_stiff)
+
+
+def test_augmented_lagrangian_rejected_where_not_implemented(tmp_path):
+    data = tomllib.loads((ROOT / "scenes" / "punch.toml").read_text())
+    data["contact"][0].update(enforcement="augmented_lagrangian", mu=0.3)
+    with pytest.raises(scene.SceneError, match=r"contact\[0\]\.enforcement"):
+        scene.load(data)
