@@ -27,7 +27,7 @@ from hypercontact.simulation import Simulation
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
-from reference.sphere1d import PAPER, limit_point, pressure_curve  # noqa: E402
+from hypercontact.sphere1d import PAPER, limit_point, pressure_curve  # noqa: E402
 
 
 def run(out, overrides):

@@ -7,7 +7,7 @@ from mpi4py import MPI
 
 from hypercontact import scene
 from hypercontact.simulation import Simulation
-from reference.sphere1d import (PAPER, incompressible_limit_point, incompressible_pressure, limit_point,
+from hypercontact.sphere1d import (PAPER, incompressible_limit_point, incompressible_pressure, limit_point,
                                  pressure_curve)
 
 SCENE = ROOT / "scenes" / "sphere.toml"

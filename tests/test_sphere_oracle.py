@@ -1,4 +1,4 @@
-"""Checks of the 1D oracle for the inflated thick sphere (tests/reference/sphere1d.py).
+"""Checks of the 1D oracle for the inflated thick sphere (python/hypercontact/sphere1d.py).
 
 The oracle is checked against: its own refinement and a second discretisation
 (shooting), complex-step derivatives, the incompressible closed form (limit
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
 
-from reference.sphere1d import (A0, B0, PAPER, Sphere, incompressible_limit_point,
+from hypercontact.sphere1d import (A0, B0, PAPER, Sphere, incompressible_limit_point,
                                 incompressible_pressure, lame_inner_displacement,
                                 limit_point, nominal_stresses, pressure_curve, psi,
                                 psi_derivs, small_strain_moduli, solve, solve_shooting)

@@ -28,6 +28,9 @@ def _parser():
     run = sub.add_parser("run", help="run a scene")
     check = sub.add_parser("check", help="validate a scene without running it")
     sub.add_parser("scenes", help="list the built-in scenes")
+    study = sub.add_parser("study", help="run a sweep of settings: error against a reference vs wall time")
+    study.add_argument("study", help="a study TOML file or a built-in study name (scenes/studies/)")
+    study.add_argument("--out", default=None, help="results folder (default results/study_NAME)")
     for q in (run, check):
         q.add_argument("scene", help="scene file (TOML), or the name of a built-in scene")
         q.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
@@ -47,6 +50,25 @@ def _scene_path(name):
     except OSError:  # e.g. a name too long for the file system: scene.load says so
         pass
     return path
+
+
+def _study(args):
+    import logging
+
+    logging.getLogger().setLevel(logging.WARNING)
+    from . import study as study_mod
+
+    path = Path(args.study)
+    if not path.exists() and (SCENES / "studies" / f"{args.study}.toml").is_file():
+        path = SCENES / "studies" / f"{args.study}.toml"
+    out = args.out or f"results/study_{path.stem}"
+    try:
+        _, ref = study_mod.run_study(path, out)
+    except (scene_mod.SceneError, ValueError) as e:
+        print(f"hypercontact: {e}", file=sys.stderr)
+        return 2
+    print(f"hypercontact: study written to {out} (study.csv, study.md, study.png)")
+    return 0
 
 
 def list_scenes(out=sys.stdout):
@@ -84,6 +106,8 @@ def main(argv=None):
     if args.command == "scenes":
         list_scenes()
         return 0
+    if args.command == "study":
+        return _study(args)
     launched = any(v in os.environ for v in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"))
     if args.command == "run" and args.np > 1 and not launched:
         _under_mpirun(argv, args.np)  # before MPI is initialised here: a singleton cannot exec mpirun

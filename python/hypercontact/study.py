@@ -1,0 +1,232 @@
+"""What accuracy costs in time: run a scene over a sweep of settings, measure
+each case's error against a reference and its wall time, and write a table
+and a plot of error against time with the Pareto front marked.
+
+A study is a TOML file::
+
+    title = "Sphere, K = 200: limit pressure"
+    scene = "sphere"                       # a built-in scene name or a path (relative to the study)
+    set = ["material.parameters.K=200"]    # overrides for every case
+    quantity = "max:pressure_inner"        # last:COLUMN | max:COLUMN | min:COLUMN | maxabs:COLUMN
+                                           # of the run's curves.csv
+    reference = "oracle:sphere_limit_pressure"   # a number, "richardson" (mesh sweeps) or an oracle
+    [[sweep]]                              # the cases: the product of all sweeps ...
+    key = "mesh.n"
+    values = [8, 16]
+    # cases = [["mesh.n=4", "discretisation.degree=2"], ...]   # ... or an explicit list
+
+Oracles: ``oracle:sphere_limit_pressure`` (the 1D sphere oracle of
+:mod:`hypercontact.sphere1d` for the scene's law, parameters and shell).
+``richardson`` extrapolates the quantity from the three cases with the
+largest ``mesh.n`` (refinement ratio from their n; the estimated uncertainty,
+|f∞ − f_finest|, goes into the table); it refuses non-monotone data.
+"""
+import csv
+import itertools
+import json
+import math
+import time
+import tomllib
+from pathlib import Path
+
+from . import scene as scene_mod
+from .scene import SceneError
+
+QUANTITY_OPS = {"last": lambda v: v[-1], "max": max, "min": min, "maxabs": lambda v: max(abs(x) for x in v)}
+
+
+def _fail(key, message):
+    raise SceneError(f"study key '{key}': {message}")
+
+
+def load_study(path):
+    """The validated study dict (scene path resolved)."""
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError(f"study file '{path}' does not exist")
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as err:
+        raise SceneError(f"study file '{path}' is not valid TOML: {err}") from None
+    known = {"title", "scene", "set", "quantity", "reference", "sweep", "cases"}
+    for key in data:
+        if key not in known:
+            _fail(key, f"unknown key (valid: {', '.join(sorted(known))})")
+    for key in ("scene", "quantity", "reference"):
+        if key not in data:
+            _fail(key, "missing (required)")
+    op, _, column = str(data["quantity"]).partition(":")
+    if op not in QUANTITY_OPS or not column:
+        _fail("quantity", f"expected OP:COLUMN with OP one of {', '.join(QUANTITY_OPS)}, found {data['quantity']!r}")
+    ref = data["reference"]
+    if not (isinstance(ref, (int, float)) and not isinstance(ref, bool) and math.isfinite(ref)) and \
+            ref not in ("richardson", "oracle:sphere_limit_pressure"):
+        _fail("reference", f"expected a number, \"richardson\" or \"oracle:sphere_limit_pressure\", found {ref!r}")
+    if ("sweep" in data) == ("cases" in data):
+        _fail("sweep", "give either [[sweep]] entries or a cases list, not both, not neither")
+    for i, s in enumerate(data.get("sweep", [])):
+        if set(s) != {"key", "values"} or not isinstance(s["values"], list) or not s["values"]:
+            _fail(f"sweep[{i}]", "expected key = \"a.scene.key\" and a non-empty values list")
+    from .cli import SCENES
+
+    scene_path = Path(data["scene"])
+    if not scene_path.is_absolute():
+        scene_path = (path.parent / scene_path) if (path.parent / scene_path).is_file() else SCENES / f"{data['scene']}.toml"
+    if not scene_path.is_file():
+        _fail("scene", f"no scene file or built-in scene {data['scene']!r}")
+    data["scene_path"] = str(scene_path)
+    data.setdefault("set", [])
+    data.setdefault("title", path.stem)
+    return data
+
+
+def cases_of(study):
+    """Each case's list of 'key=value' overrides (after the study's own)."""
+    if "cases" in study:
+        return [list(c) for c in study["cases"]]
+    sweeps = study["sweep"]
+    return [[f"{s['key']}={_toml_value(v)}" for s, v in zip(sweeps, combo)]
+            for combo in itertools.product(*[s["values"] for s in sweeps])]
+
+
+def _toml_value(v):
+    return json.dumps(v) if isinstance(v, str) else repr(v).lower() if isinstance(v, bool) else repr(v)
+
+
+def quantity_of(rows, quantity):
+    op, _, column = quantity.partition(":")
+    values = [float(r[column]) for r in rows]
+    if not values:
+        raise ValueError(f"quantity {quantity!r}: the run wrote no steps")
+    return QUANTITY_OPS[op](values)
+
+
+def pareto_front(points):
+    """Indices of the (time, error) points no other point beats in both
+    (≤ in both and < in one)."""
+    front = []
+    for i, (t, e) in enumerate(points):
+        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for j, (t2, e2) in enumerate(points) if j != i):
+            front.append(i)
+    return front
+
+
+def richardson(ns, values):
+    """(f∞, uncertainty, order) from the three finest levels of a mesh sweep."""
+    order = sorted(range(len(ns)), key=lambda i: ns[i])[-3:]
+    if len(order) < 3:
+        raise ValueError("richardson: needs at least three mesh levels")
+    (n1, f1), (n2, f2), (n3, f3) = [(ns[i], values[i]) for i in order]
+    r = n2 / n1
+    if abs(n3 / n2 - r) > 1e-9 * r:
+        raise ValueError(f"richardson: needs a constant refinement ratio, found n = {n1}, {n2}, {n3}")
+    d1, d2 = f2 - f1, f3 - f2
+    if d1 == 0 or d2 / d1 <= 0 or abs(d2) >= abs(d1):
+        raise ValueError(f"richardson: the quantity does not converge monotonically ({f1:.6g}, {f2:.6g}, {f3:.6g}); "
+                         "no extrapolation is meaningful")
+    p = math.log(d1 / d2) / math.log(r)
+    f_inf = f3 + d2 / (r**p - 1.0)
+    return f_inf, abs(f_inf - f3), p
+
+
+def reference_value(study, base_scene, results):
+    ref = study["reference"]
+    if isinstance(ref, (int, float)):
+        return float(ref), 0.0, "given"
+    if ref == "oracle:sphere_limit_pressure":
+        from .sphere1d import limit_point
+
+        mesh, mat = base_scene["mesh"], base_scene["material"]
+        A = mesh["inner_radius"]
+        _, p = limit_point(mat["law"], mat["parameters"], A=A, B=A + mesh["thickness"])
+        scale = base_scene["pressure"][0]["value"] if study["quantity"].endswith("load_factor") else 1.0
+        return p / scale, 0.0, "1D oracle (hypercontact.sphere1d)"
+    ns = [r["mesh.n"] for r in results]
+    f_inf, unc, p = richardson(ns, [r["value"] for r in results])
+    return f_inf, unc, f"Richardson extrapolation (order {p:.2f})"
+
+
+def run_study(study_path, out_dir, comm=None, log=print):
+    """Run every case; write study.csv, study.md and study.png into out_dir."""
+    from mpi4py import MPI
+
+    from .simulation import Simulation, StepFailure
+
+    comm = comm or MPI.COMM_WORLD
+    study = load_study(study_path)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    base = scene_mod.load(study["scene_path"], study["set"])
+    results = []
+    for k, case in enumerate(cases_of(study)):
+        sc = scene_mod.load(study["scene_path"], study["set"] + case + ["output.xdmf=false"])
+        case_dir = out / f"case{k:02d}"
+        t0 = time.perf_counter()
+        status = "completed"
+        try:
+            sim = Simulation(sc, comm, log=lambda *a, **kw: None)
+            writer = sim.run(out_dir=str(case_dir))
+        except StepFailure:
+            status = "failed"
+        wall = time.perf_counter() - t0
+        rows = list(csv.DictReader(open(case_dir / "curves.csv"))) if (case_dir / "curves.csv").is_file() else []
+        value = quantity_of(rows, study["quantity"]) if rows and status == "completed" else float("nan")
+        newton = sum(int(r["newton_iterations"]) for r in rows)
+        results.append({"case": k, "settings": " ".join(case), "value": value, "wall_s": wall,
+                        "newton": newton, "steps": len(rows), "status": status, "mesh.n": sc["mesh"]["n"]})
+        log(f"case {k}: {' '.join(case)}: {study['quantity']} = {value:.8g}, {wall:.1f} s, {newton} Newton its")
+    ok = [r for r in results if r["status"] == "completed"]
+    ref, unc, how = reference_value(study, base, ok)
+    for r in results:
+        r["error"] = abs(r["value"] - ref) / abs(ref) if r["status"] == "completed" else float("nan")
+    front = set(pareto_front([(r["wall_s"], r["error"]) for r in ok]))
+    for i, r in enumerate(ok):
+        r["pareto"] = i in front
+    if comm.rank == 0:
+        _write(out, study, results, ref, unc, how)
+    return results, ref
+
+
+def _write(out, study, results, ref, unc, how):
+    keys = ["case", "settings", "value", "error", "wall_s", "newton", "steps", "status", "pareto"]
+    with open(out / "study.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
+        w.writeheader()
+        for r in results:
+            w.writerow({**r, "pareto": r.get("pareto", False)})
+    lines = [f"# {study['title']}", "",
+             f"Quantity: `{study['quantity']}`; reference {ref:.8g} ({how}"
+             + (f", uncertainty ±{unc:.3g}" if unc else "") + ").", "",
+             "| settings | value | error | wall (s) | Newton its | Pareto |", "|---|---|---|---|---|---|"]
+    for r in results:
+        lines.append(f"| {r['settings']} | {r['value']:.6g} | {100 * r['error']:.3g} % | {r['wall_s']:.1f} | "
+                     f"{r['newton']} | {'yes' if r.get('pareto') else ''} |")
+    for target in (1e-2, 1e-3):
+        hit = [r for r in results if r.get("error", math.inf) <= target]
+        best = min(hit, key=lambda r: r["wall_s"]) if hit else None
+        lines.append("")
+        lines.append(f"Cheapest within {100 * target:g} %: "
+                     + (f"{best['settings']} ({best['wall_s']:.1f} s)" if best else "none of these cases"))
+    (out / "study.md").write_text("\n".join(lines) + "\n")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ok = [r for r in results if r["status"] == "completed"]
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    floor = 1e-8
+    ax.loglog([r["wall_s"] for r in ok], [max(r["error"], floor) for r in ok], "o", color="0.6", label="cases")
+    front = sorted([r for r in ok if r["pareto"]], key=lambda r: r["wall_s"])
+    ax.loglog([r["wall_s"] for r in front], [max(r["error"], floor) for r in front], "o-", color="C3",
+              label="Pareto front")
+    for r in ok:
+        ax.annotate(r["settings"], (r["wall_s"], max(r["error"], floor)), fontsize=6)
+    ax.set_xlabel("wall time (s)")
+    ax.set_ylabel(f"relative error of {study['quantity']}")
+    ax.set_title(study["title"], fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "study.png", dpi=110)
+    plt.close(fig)
