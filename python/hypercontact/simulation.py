@@ -26,7 +26,7 @@ from .timing import Timers
 
 AXIS = {"x": 0, "y": 1, "z": 2}
 #: contacts with a friction history (checkpointed: xi, t_old, lam_committed, dissipation, history_arrays)
-FRICTIONAL = (FrictionalRigidContact,)
+FRICTIONAL = (FrictionalRigidContact, FrictionalSurfaceContact)
 
 
 class StepFailure(RuntimeError):
@@ -142,7 +142,8 @@ class Simulation:
                 raise SceneError(f"scene key 'contact[{i}].obstacle': contact with a deformable surface needs "
                                  "steps.control = \"load\" (continuation with it is not supported yet)")
             master = [self._tag(m, f"contact[{i}].master") for m in c["master"].split("+")]
-            self.contacts.append(SurfaceContact(c, self.V, self.body.facet_tags, [slave], master, constrained))
+            kind = FrictionalSurfaceContact if c["mu"] > 0 else SurfaceContact  # μ > 0: single pass, nodal
+            self.contacts.append(kind(c, self.V, self.body.facet_tags, [slave], master, constrained))
             if c["passes"] == 2:  # two-pass: each surface is slave once
                 self.contacts.append(SurfaceContact(c, self.V, self.body.facet_tags, master, [slave], constrained,
                                                     name=f"{c['name']}_pass2"))

@@ -1,0 +1,163 @@
+"""Coulomb friction against a deformable master surface: the history of each
+slave point and the calls to the C++ assembly (``assemble_surface_friction``:
+the normal penalty of :class:`~.surface_contact.SurfaceContact` plus the
+return mapping of ``surface_friction`` per closed point).
+
+History per slave point (SPEC §2: ξ and T_T of the last converged step) is a
+*master material point*: the master facet the point was paired with at the
+last converged step and ξ* there, and that step's tangential traction t. The
+kernel places the old point at the old facet's *current* nodes, so a master
+that moves or deforms under a sticking point creates no trial traction, and a
+point now over another facet keeps its history. Paired points, open or
+closed, store (facet, ξ*, t) (t = 0 when open, as the rigid contact stores the
+position of an open node); points off the master or without a candidate store
+none (old facet −1: the kernel then takes the current point, t_old = 0). The
+history is set from the reference configuration when the contact is built and
+changes only in :meth:`FrictionalSurfaceContact.commit`, after a converged
+step: a step that fails and is cut back leaves it as it was.
+
+The tangent has columns of the old facet's nodes: :meth:`couplings` adds them
+to the matrix pattern. Only contacts with μ > 0 use this class (single pass,
+nodal integration: scene.py refuses the others), so a frictionless scene never
+enters it. What the results report mirrors :class:`~.friction.FrictionalRigidContact`.
+"""
+import numpy as np
+from mpi4py import MPI
+
+from . import _cpp
+from .friction import OPEN, SLIP, STICK
+from .surface_contact import SurfaceContact
+
+
+class FrictionalSurfaceContact(SurfaceContact):
+    """Node-to-surface normal penalty plus Coulomb friction (ε_T, μ)."""
+
+    def __init__(self, spec, V, facet_tags, slave_tags, master_tags, constrained, name=None):
+        super().__init__(spec, V, facet_tags, slave_tags, master_tags, constrained, name)
+        if self.nodes is None:
+            raise ValueError(f"contact {self.name!r}: friction against a surface needs nodal integration")
+        self.mu = float(spec["mu"])
+        self.eps_t = float(spec["eps_t"] or spec["eps_n"])
+        n = len(self.point_area)
+        self.old_facet = np.full(n, -1, np.int32)
+        self.xi = np.zeros((n, 2))
+        self.t_old = np.zeros((n, 3))
+        self.lam_committed = 0.0  # kept for the checkpoint's common format (the master moves with u)
+        self.dissipation = 0.0  # accumulated over converged steps, all ranks
+        self.dissipation_step = 0.0  # of the last converged step, all ranks
+        self.slip_accumulated = np.zeros(n)  # per point: Σ |Δs|
+        self.dissipation_nodes = np.zeros(n)  # per point: Σ D
+        self.committed = None  # friction state of the last converged step
+        # History at the reference configuration: where each point is paired before any load.
+        self.candidates = self.search(self.X)
+        self._store_history(_cpp.evaluate_surface_friction(*self._args_at(self.X)))
+        self.candidates = None
+
+    # --- kernel calls ------------------------------------------------------
+    def _args_at(self, x):
+        offsets, cand = self.candidates
+        return (x, self.point_nodes, self.point_weights, self.point_area, self.facets, self.edge_neighbour,
+                offsets, cand, self.eps_n, self.dofs, self.old_facet, np.ascontiguousarray(self.xi),
+                np.ascontiguousarray(self.t_old), self.eps_t, self.mu)
+
+    def _fargs(self, u):
+        return self._args_at(self.current_coordinates(u))
+
+    def add_residual_global(self, u, b):
+        self.state = _cpp.assemble_surface_friction_residual(*self._fargs(u), b)
+
+    def add_tangent(self, u, A):
+        _cpp.assemble_surface_friction_tangent(*self._fargs(u), A)
+
+    def evaluate(self, u):
+        """Pairing, normal and friction state at u against the history
+        (``force`` is the total, normal + tangential, force on the slave body)."""
+        return _cpp.evaluate_surface_friction(*self._fargs(u))
+
+    friction_state = evaluate
+
+    def active_set_signature(self):
+        closed = np.flatnonzero(np.asarray(self.state.gap) <= 0.0)
+        facets = np.asarray(self.state.facet)[closed]
+        slipping = int(np.count_nonzero(np.asarray(self.state.state) == SLIP))
+        local = (len(closed), int(closed.sum() + facets.sum()), slipping)
+        return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
+
+    # --- pattern -----------------------------------------------------------
+    def couplings(self):
+        """As SurfaceContact.couplings, with each point's old facet's nodes
+        among the point's nodes (the friction tangent has their columns)."""
+        offsets, cand = self.candidates
+        rows, cols = [], []
+        for p in range(len(self.point_area)):
+            nodes = [n for n in self.point_nodes[p] if n >= 0]
+            for f in cand[offsets[p]:offsets[p + 1]]:
+                nodes.extend(self.facets[f])
+            if self.old_facet[p] >= 0:
+                nodes.extend(self.facets[self.old_facet[p]])
+            if len(nodes) <= 1:
+                continue
+            d = self.dofs[np.unique(nodes)].ravel()
+            d = d[d >= 0]
+            rows.append(np.repeat(d, len(d)))
+            cols.append(np.tile(d, len(d)))
+        if not rows:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        return np.concatenate(rows).astype(np.int64), np.concatenate(cols).astype(np.int64)
+
+    # --- history -----------------------------------------------------------
+    def _store_history(self, state):
+        paired = np.asarray(state.status) == 2  # PairingStatus::Paired
+        self.old_facet = np.where(paired, np.asarray(state.facet), -1).astype(np.int32)
+        self.xi = np.where(paired[:, None], np.asarray(state.xi), 0.0)
+        self.t_old = np.where(paired[:, None], np.asarray(state.traction), 0.0)
+
+    def commit(self, u):
+        """Make the converged state the history of the next step."""
+        state = self.committed = self.evaluate(u)
+        dissipation = np.asarray(state.dissipation)
+        self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
+        self.dissipation += self.dissipation_step
+        self.dissipation_nodes = self.dissipation_nodes + dissipation
+        self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
+        self._store_history(state)
+        self.lam_committed = getattr(self, "load_factor", 0.0)
+        return state
+
+    def stick_slip_counts(self):
+        """(sticking, slipping) slave points at the last converged step, all ranks."""
+        if self.committed is None:
+            return 0, 0
+        s = np.asarray(self.committed.state)
+        local = np.array([np.count_nonzero(s == STICK), np.count_nonzero(s == SLIP)], dtype=np.int64)
+        return tuple(int(v) for v in self.comm.allreduce(local, op=MPI.SUM))
+
+    def surface_fields(self):
+        """Per slave node of this rank at the last converged step, as
+        FrictionalRigidContact.surface_fields: status, the tangential
+        traction of the master on the slave body (−t), slip increment,
+        accumulated slip, dissipation of the step and accumulated, per unit
+        reference area."""
+        n, area = len(self.point_area), self.point_area
+        if self.committed is None:
+            zeros3 = np.zeros((n, 3))
+            return {"status": np.full(n, float(OPEN)), "traction": zeros3, "slip_increment": zeros3,
+                    "accumulated_slip": self.slip_accumulated.copy(), "dissipation_step": np.zeros(n),
+                    "dissipation": self.dissipation_nodes / area}
+        state = self.committed
+        return {"status": np.asarray(state.state, dtype=float),
+                "traction": -np.asarray(state.traction),
+                "slip_increment": np.asarray(state.slip_increment),
+                "accumulated_slip": self.slip_accumulated.copy(),
+                "dissipation_step": np.asarray(state.dissipation) / area,
+                "dissipation": self.dissipation_nodes / area}
+
+    def history_arrays(self):
+        """This rank's per-point history beyond ξ and t, for the checkpoint."""
+        return {"facet": self.old_facet, "slip": self.slip_accumulated, "work": self.dissipation_nodes}
+
+    def restore_history_arrays(self, arrays):
+        n = len(self.point_area)
+        self.old_facet = np.array(arrays.get("facet", np.full(n, -1)), dtype=np.int32)
+        self.slip_accumulated = np.array(arrays.get("slip", np.zeros(n)), dtype=float)
+        self.dissipation_nodes = np.array(arrays.get("work", np.zeros(n)), dtype=float)
