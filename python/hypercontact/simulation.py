@@ -15,6 +15,7 @@ from .checkpoint import Checkpoint
 from .contact import RigidContact
 from .friction import FrictionalRigidContact
 from .surface_contact import SurfaceContact
+from .surface_friction import FrictionalSurfaceContact
 from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, DisplacementConstraint
 from .continuation import step as continuation_step
 from . import penalty
