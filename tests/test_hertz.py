@@ -1,0 +1,77 @@
+"""Hertz contact (scenes/hertz.toml: an elastic hemisphere R = 10 mm on an
+elastic block, both neo-Hookean E = 10 MPa, ν = 0.3) on a coarse mesh,
+against Hertz's solution at the computed force:
+a_H = (3FR/4E*)^(1/3), p0_H = 3F/(2π a_H²), E* = E/(2(1−ν²)).
+
+Tolerances (the refinement study is bench/hertz.py → bench/results/hertz.md):
+- contact radius: with nodal integration the contact boundary is only
+  known to lie between the outermost closed and the first open slave node,
+  so |a_FE − a_H| ≤ h, the reference spacing of the slave nodes there
+  (measured on the mesh, not chosen);
+- peak pressure of the Hertz profile fitted to the closed nodes: the bench
+  measures −15.6 % at this mesh (block 8/8, ball 6/6), −10.5 % at the
+  scene's default mesh (16/16, 12/12), the error shrinking under
+  refinement; the test allows 20 %, i.e. the error at this mesh with a
+  margin of a quarter of it (the nodal pressure at the pole itself is
+  not asserted: it sits ~25 % low at every level, see the bench).
+"""
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+import importlib.util
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+_spec = importlib.util.spec_from_file_location("bench_hertz", ROOT / "bench" / "hertz.py")
+H = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(H)
+
+COARSE = (8, 8, 6, 6)  # block n, m; ball n, m
+
+
+@pytest.fixture(scope="module")
+def coarse(tmp_path_factory):
+    sim, writer = H.run(*COARSE, tmp_path_factory.mktemp("hertz"), MPI.COMM_SELF)
+    return sim, writer
+
+
+def test_hertz_contact_radius_within_one_slave_node_spacing(coarse):
+    sim, writer = coarse
+    assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
+    X, x, gap, p, F = H.slave_profile(sim)
+    a_H, p0_H, _ = H.hertz(F)
+    geo = H.contact_radius(X, x, gap, p)
+    lo, hi = geo["bracket"]
+    assert lo < hi
+    h = geo["h_slave"]
+    assert 0.0 < h < a_H  # the contact zone is resolved by at least one cell
+    assert abs(geo["a_gap"] - a_H) <= h
+    assert abs(geo["a_fit"] - a_H) <= h
+    # Hertz's radius itself lies inside the bracket of closed/open nodes, widened by a node spacing
+    assert lo - h <= a_H <= hi
+
+
+def test_hertz_peak_pressure_of_the_fitted_profile(coarse):
+    sim, _ = coarse
+    X, x, gap, p, F = H.slave_profile(sim)
+    a_H, p0_H, _ = H.hertz(F)
+    geo = H.contact_radius(X, x, gap, p)
+    assert abs(geo["p0_fit"] / p0_H - 1.0) <= 0.20
+
+
+@pytest.mark.mpi
+def test_hertz_two_ranks_equal_serial(out_dir, tmp_path):
+    """The coarse Hertz scene on the ranks of COMM_WORLD equals a serial run."""
+    comm = MPI.COMM_WORLD
+    if comm.size < 2:
+        pytest.skip("needs mpirun -n 2")
+    par, _ = H.run(*COARSE, out_dir, comm)
+    f_par = par.contacts[0].force(par.u)
+    ser, _ = H.run(*COARSE, tmp_path / "serial", MPI.COMM_SELF)
+    f_ser = ser.contacts[0].force(ser.u)
+    assert f_par[2] > 0.0
+    assert np.allclose(f_par, f_ser, rtol=1e-8, atol=1e-12)
+    probe_par = par.probes["top"].value(par.u)
+    probe_ser = ser.probes["top"].value(ser.u)
+    assert np.allclose(probe_par, probe_ser, rtol=1e-8, atol=1e-12)
