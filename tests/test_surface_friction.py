@@ -80,9 +80,6 @@ def test_block_sticks_below_mu_n_then_slides_at_mu_n(tmp_path):
     assert abs(c.dissipation_step - MU * N * 0.005) < 0.02 * MU * N * 0.005
 
 
-@pytest.mark.xfail(strict=True, reason="open: the assembled Jacobian differs from central differences by "
-                   "~2e-3 of its largest entry in the slave rows after a drag (not located yet; the kernel "
-                   "alone passes its FD tests)")
 def test_assembled_jacobian_matches_finite_differences_in_stick_and_slip(tmp_path):
     """Volume + normal + friction: after a converged drag step (history set,
     some points slipping), a perturbed state; every free entry of the
@@ -94,7 +91,9 @@ def test_assembled_jacobian_matches_finite_differences_in_stick_and_slip(tmp_pat
     run_phase(sim, {1: [0.0, 0.0, -PRESS]}, tmp_path / "press")
     run_phase(sim, {1: [0.004, 0.0, -PRESS]}, tmp_path / "drag")
     c = sim.contacts[0]
-    sim.set_load_factor(1.0)
+    # The prescribed values stay where the drag phase left them (Simulation.set_load_factor would
+    # reset them to λ × the scene's motion: the Dirichlet lifting would then differ from the
+    # solution's boundary values and put a spurious term into the finite differences).
     rng = np.random.default_rng(5)
     constrained = np.zeros(sim.w.x.array.size, bool)
     for bc in sim.bcs:
@@ -102,7 +101,9 @@ def test_assembled_jacobian_matches_finite_differences_in_stick_and_slip(tmp_pat
     u = sim.w.x.array
     u[~constrained] += 2e-4 * rng.standard_normal(np.count_nonzero(~constrained))
     X = dfx.node_coordinates(sim.V)
-    u.reshape(-1, 3)[X[:, 2] > 0.5 + 1e-9, 0] += 1e-3  # the slider moves on: more points slip
+    moving = np.zeros(u.size, bool)
+    moving.reshape(-1, 3)[X[:, 2] > 0.5 + 1e-9, 0] = True
+    u[moving & ~constrained] += 1e-3  # the slider moves on: more points slip (driven dofs stay put)
     sim.update_pairing(fresh=True)
     state = np.asarray(c.evaluate(sim.u).state)
     assert np.count_nonzero(state == STICK) >= 2 and np.count_nonzero(state == SLIP) >= 2
