@@ -24,6 +24,14 @@ def test_richardson_recovers_a_known_limit_and_refuses_oscillation():
         richardson(ns, [1.0, 1.1, 1.05])
 
 
+def test_richardson_family_ignores_cases_that_change_other_settings():
+    from hypercontact.study import mesh_family
+
+    rows = [{"settings": "mesh.n=8", "mesh.n": 8}, {"settings": "mesh.n=16", "mesh.n": 16},
+            {"settings": "mesh.n=16 contact.0.penalty_factor=10", "mesh.n": 16}, {"settings": "mesh.n=32", "mesh.n": 32}]
+    assert [r["settings"] for r in mesh_family(rows)] == ["mesh.n=8", "mesh.n=16", "mesh.n=32"]
+
+
 def test_cases_are_the_product_of_the_sweeps():
     study = {"sweep": [{"key": "mesh.n", "values": [2, 4]}, {"key": "solver.linesearch", "values": ["bt", "basic"]}]}
     assert cases_of(study) == [["mesh.n=2", 'solver.linesearch="bt"'], ["mesh.n=2", 'solver.linesearch="basic"'],
