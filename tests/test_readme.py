@@ -46,6 +46,13 @@ def test_command_lines_are_valid(argv, capsys, monkeypatch):
         elif a != "--resume":
             args.append(a)
     monkeypatch.chdir(ROOT)
+    if argv[0] == "study":  # a study file (or built-in study): it must load and name a valid scene
+        from hypercontact.study import load_study
+
+        path = ROOT / "scenes" / "studies" / f"{args[0]}.toml"
+        study = load_study(path if path.is_file() else args[0])
+        assert cli.main(["check", study["scene_path"], *[f"--set={o}" for o in study["set"]]]) == 0
+        return
     assert cli.main(["check", *args]) == 0, capsys.readouterr().err
 
 
