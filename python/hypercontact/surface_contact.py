@@ -209,45 +209,53 @@ class SurfaceContact:
         """Search at u and make the result the pairing (and the pattern)."""
         self.candidates = self.search(self.current_coordinates(u))
 
+    def point_node_pairs(self):
+        """(point, contact node) pairs: each point's slave nodes and its
+        candidate facets' nodes (subclasses add more)."""
+        offsets, cand = self.candidates
+        n_points = len(self.point_area)
+        own = np.repeat(np.arange(n_points), 4), self.point_nodes.ravel()
+        per_candidate = np.repeat(np.arange(n_points), np.diff(offsets))
+        facet_nodes = np.repeat(per_candidate, 4), self.facets[cand].ravel()
+        return np.concatenate([own[0], facet_nodes[0]]), np.concatenate([own[1], facet_nodes[1]])
+
     def couplings(self):
         """Global dof pairs (rows, cols) this rank's points add to the matrix:
-        every dof of a point's slave nodes and candidate facets' nodes with
-        every other; constrained dofs left out."""
-        offsets, cand = self.candidates
-        rows, cols = [], []
-        for p in range(len(self.point_area)):
-            nodes = [n for n in self.point_nodes[p] if n >= 0]
-            for f in cand[offsets[p]:offsets[p + 1]]:
-                nodes.extend(self.facets[f])
-            if len(nodes) <= 1:
-                continue
-            d = self.dofs[np.unique(nodes)].ravel()
-            d = d[d >= 0]
-            rows.append(np.repeat(d, len(d)))
-            cols.append(np.tile(d, len(d)))
-        if not rows:
-            return np.zeros(0, np.int64), np.zeros(0, np.int64)
-        return np.concatenate(rows).astype(np.int64), np.concatenate(cols).astype(np.int64)
+        every dof of a point's nodes (point_node_pairs) with every other;
+        constrained dofs left out. Vectorised: a self-join per point."""
+        points, nodes = self.point_node_pairs()
+        keep = nodes >= 0
+        key = np.unique(points[keep].astype(np.int64) * self.num_nodes + nodes[keep])
+        P, N = key // self.num_nodes, key % self.num_nodes
+        counts = np.bincount(P, minlength=len(self.point_area))
+        starts = np.cumsum(counts) - counts
+        rep = counts[P]
+        rows = np.repeat(N, rep)
+        within = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
+        cols = N[np.repeat(starts[P], rep) + within]
+        R = np.repeat(self.dofs[rows], 3, axis=1).ravel()
+        C = np.tile(self.dofs[cols], (1, 3)).ravel()
+        ok = (R >= 0) & (C >= 0)
+        return R[ok].astype(np.int64), C[ok].astype(np.int64)
 
     def refresh_pairing(self, u):
-        """After a converged step: search again; True (and the new pairing
-        kept) if some point has a candidate facet outside the pattern."""
-        new = self.search(self.current_coordinates(u))
-        old_off, old_idx = self.candidates
-        new_off, new_idx = new
-        outside = 0
-        for p in range(len(self.point_area)):
-            if not set(new_idx[new_off[p]:new_off[p + 1]]) <= set(old_idx[old_off[p]:old_off[p + 1]]):
-                outside += 1
+        """After a converged step: search again; True (and the union of the
+        old and new candidates kept, so that a point on the border of two
+        facets keeps both) if some point has a candidate outside the pattern."""
+        n_points, n_facets = len(self.point_area), len(self.facets)
+
+        def keys(csr):
+            offsets, idx = csr
+            return np.repeat(np.arange(n_points, dtype=np.int64), np.diff(offsets)) * n_facets + idx
+
+        old, new = keys(self.candidates), keys(self.search(self.current_coordinates(u)))
+        outside = int(np.count_nonzero(~np.isin(new, old)))
         changed = self.comm.allreduce(outside, op=MPI.SUM) > 0
         if changed:
-            # Keep the union, so that a point on the border of two facets keeps both.
-            merged_off, merged = [0], []
-            for p in range(len(self.point_area)):
-                facets = sorted(set(new_idx[new_off[p]:new_off[p + 1]]) | set(old_idx[old_off[p]:old_off[p + 1]]))
-                merged.extend(facets)
-                merged_off.append(len(merged))
-            self.candidates = (np.array(merged_off, np.int32), np.array(merged, np.int32))
+            merged = np.union1d(old, new)
+            counts = np.bincount(merged // n_facets, minlength=n_points)
+            offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+            self.candidates = (offsets, (merged % n_facets).astype(np.int32))
             self.repairings += 1
         return changed
 

@@ -84,26 +84,13 @@ class FrictionalSurfaceContact(SurfaceContact):
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
 
     # --- pattern -----------------------------------------------------------
-    def couplings(self):
-        """As SurfaceContact.couplings, with each point's old facet's nodes
-        among the point's nodes (the friction tangent has their columns)."""
-        offsets, cand = self.candidates
-        rows, cols = [], []
-        for p in range(len(self.point_area)):
-            nodes = [n for n in self.point_nodes[p] if n >= 0]
-            for f in cand[offsets[p]:offsets[p + 1]]:
-                nodes.extend(self.facets[f])
-            if self.old_facet[p] >= 0:
-                nodes.extend(self.facets[self.old_facet[p]])
-            if len(nodes) <= 1:
-                continue
-            d = self.dofs[np.unique(nodes)].ravel()
-            d = d[d >= 0]
-            rows.append(np.repeat(d, len(d)))
-            cols.append(np.tile(d, len(d)))
-        if not rows:
-            return np.zeros(0, np.int64), np.zeros(0, np.int64)
-        return np.concatenate(rows).astype(np.int64), np.concatenate(cols).astype(np.int64)
+    def point_node_pairs(self):
+        """As SurfaceContact's, plus each point's old facet's nodes (the
+        friction tangent has their columns)."""
+        points, nodes = super().point_node_pairs()
+        has = np.flatnonzero(self.old_facet >= 0)
+        old = np.repeat(has, 4), self.facets[self.old_facet[has]].ravel()
+        return np.concatenate([points, old[0]]), np.concatenate([nodes, old[1]])
 
     # --- history -----------------------------------------------------------
     def _store_history(self, state):
