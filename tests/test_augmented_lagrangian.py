@@ -59,8 +59,34 @@ def test_force_tends_to_the_penalty_free_limit(tmp_path):
     assert abs(f_soft - f_stiff) > 2 * abs(f_al - f_stiff)
 
 
-def test_augmented_lagrangian_rejected_where_not_implemented(tmp_path):
+def test_with_friction_the_gap_tolerance_is_reached_and_the_cone_holds(tmp_path):
+    """μ1 = 0.3 under the punch, soft penalty, augmented: the penetration
+    reaches the tolerance, and every slipping node's traction is on the cone
+    of the augmented pressure, |t| = μ ⟨λ − ε_N g⟩ (to 1e-9)."""
     data = tomllib.loads((ROOT / "scenes" / "punch.toml").read_text())
-    data["contact"][0].update(enforcement="augmented_lagrangian", mu=0.3)
+    data["mesh"].update(n=8, m=2)
+    data["output"]["xdmf"] = False
+    for c in data["contact"]:
+        c.pop("eps_n")
+        c.update(penalty_factor=3.0, enforcement="augmented_lagrangian", gap_tolerance=TOL, max_augmentations=30)
+    data["contact"][0].update(mu=0.3, eps_t=0.0)
+    sc = scene.load(data, [f"output.dir={tmp_path}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    sim.run(out_dir=str(tmp_path))
+    punch = sim.contacts[0]
+    assert punch.max_penetration(sim.u) <= TOL
+    state = punch.committed
+    slipping = np.asarray(state.state) == 2
+    assert np.count_nonzero(slipping) > 3
+    pressure = np.asarray(punch.evaluate(sim.u).pressure)
+    t = np.linalg.norm(np.asarray(state.traction), axis=1)
+    assert np.allclose(t[slipping], 0.3 * pressure[slipping], rtol=1e-9, atol=1e-12)
+    # the multipliers are the pressures: they carry the load, not the soft penalty
+    assert np.all(pressure[slipping] > 5 * punch.eps_n * TOL)
+
+
+def test_augmented_lagrangian_rejected_where_not_implemented(tmp_path):
+    data = tomllib.loads((ROOT / "scenes" / "blocks.toml").read_text())
+    data["contact"][0].update(enforcement="augmented_lagrangian")
     with pytest.raises(scene.SceneError, match=r"contact\[0\]\.enforcement"):
         scene.load(data)

@@ -11,8 +11,13 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
                                      std::span<const double> area, double eps_n, double eps_t,
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
-                                     std::span<const std::int32_t> dofs) {
+                                     std::span<const std::int32_t> dofs,
+                                     std::span<const double> multipliers) {
   const std::size_t n = area.size();
+  if (!multipliers.empty() && multipliers.size() != n)
+    throw std::invalid_argument("assemble_rigid_friction: multipliers has " +
+                                std::to_string(multipliers.size()) + " entries, expected " +
+                                std::to_string(n) + " or none");
   for (auto [name, size] : {std::pair{"x", x.size()}, std::pair{"xi_old", xi_old.size()},
                             std::pair{"t_old", t_old.size()}, std::pair{"dofs", dofs.size()}})
     if (size != 3 * n)
@@ -26,7 +31,9 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
     if (!xi.allFinite())
       throw std::runtime_error("assemble_rigid_friction: coordinates of slave node " +
                                std::to_string(i) + " are not finite");
-    out.push_back(coulomb_friction(project(obstacle, xi), xi, Eigen::Vector3d(&xi_old[3 * i]),
+    ObstacleProjection p = project(obstacle, xi);
+    if (!multipliers.empty()) p.gap -= multipliers[i] / eps_n;  // augmented: p_N = ⟨λ − ε_N g⟩
+    out.push_back(coulomb_friction(p, xi, Eigen::Vector3d(&xi_old[3 * i]),
                                    Eigen::Vector3d(&t_old[3 * i]), area[i], eps_n, eps_t, mu));
   }
   return out;
@@ -36,8 +43,8 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
 RigidFrictionState assemble_rigid_friction_residual(
     const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
-    std::span<const std::int32_t> dofs, std::span<double> b) {
-  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs);
+    std::span<const std::int32_t> dofs, std::span<double> b, std::span<const double> multipliers) {
+  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers);
   RigidFrictionState s{{}, {}, {}, {}, Eigen::Vector3d::Zero()};
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const FrictionResult& f = nodes[i];
@@ -62,8 +69,9 @@ void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const d
                                      std::span<const double> area, double eps_n, double eps_t,
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
-                                     std::span<const std::int32_t> dofs, Mat A) {
-  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs);
+                                     std::span<const std::int32_t> dofs, Mat A,
+                                     std::span<const double> multipliers) {
+  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].state == StickSlip::Open) continue;
     const std::array<PetscInt, 3> rows{dofs[3 * i], dofs[3 * i + 1], dofs[3 * i + 2]};

@@ -49,7 +49,7 @@ class FrictionalRigidContact(RigidContact):
     def _friction(self, u, b_local):
         return _cpp.assemble_rigid_friction_residual(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.eps_t, self.mu,
-            self._xi_now(), self.t_old, self.dofs, b_local)
+            self._xi_now(), self.t_old, self.dofs, b_local, self.multipliers)
 
     def add_residual(self, u, b_local):
         super().add_residual(u, b_local)
@@ -59,7 +59,7 @@ class FrictionalRigidContact(RigidContact):
         super().add_tangent(u, A)
         _cpp.assemble_rigid_friction_tangent(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.eps_t, self.mu,
-            self._xi_now(), self.t_old, self.dofs, A)
+            self._xi_now(), self.t_old, self.dofs, A, self.multipliers)
 
     def friction_state(self, u):
         """Traction, slip increment, dissipation and stick/slip of this
@@ -84,6 +84,7 @@ class FrictionalRigidContact(RigidContact):
         self.t_old = np.ascontiguousarray(state.traction)
         self.xi = self.current_coordinates(u).copy()
         self.lam_committed = self.load_factor
+        self.multipliers_committed = self.multipliers.copy()  # augmented Lagrangian (else empty)
         return state
 
     def stick_slip_counts(self):

@@ -23,11 +23,14 @@ struct RigidFrictionState {
 
 /// Adds r_T,i = A_i t_i (coulomb_friction) of every slave node into b[dofs(i, :)] (−1 skipped).
 /// xi_old, t_old: n × 3 history of the last converged step (xi_old already moved with the
-/// obstacle); other arguments as assemble_rigid_residual.
+/// obstacle); multipliers (augmented Lagrangian, or empty): the friction's normal pressure is
+/// then p_N = ⟨λ − ε_N g⟩, as the normal part's (evaluate_rigid_contact); other arguments as
+/// assemble_rigid_residual.
 RigidFrictionState assemble_rigid_friction_residual(
     const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
-    std::span<const std::int32_t> dofs, std::span<double> b);
+    std::span<const std::int32_t> dofs, std::span<double> b,
+    std::span<const double> multipliers = {});
 
 /// Adds K_T,i = ∂r_T,i/∂x_i (not symmetric in slip) with MatSetValuesLocal (ADD_VALUES; rows and
 /// columns of −1 dofs skipped). Arguments as assemble_rigid_friction_residual.
@@ -35,6 +38,7 @@ void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const d
                                      std::span<const double> area, double eps_n, double eps_t,
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
-                                     std::span<const std::int32_t> dofs, Mat A);
+                                     std::span<const std::int32_t> dofs, Mat A,
+                                     std::span<const double> multipliers = {});
 
 }  // namespace hypercontact
