@@ -5,6 +5,7 @@ tangent, the contact objects add theirs into the same Vec / Mat, and the
 Dirichlet conditions are applied last so constrained rows stay exact.
 """
 import numpy as np
+from mpi4py import MPI
 from petsc4py import PETSc
 
 from . import _dolfinx as dfx
@@ -28,6 +29,10 @@ class Problem:
         # contact couples a node's own dofs only, inside the volume pattern;
         # deformable contact gets its couplings in rebuild_pattern.
         self.A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
+        self.near_nullspace = None
+        if u.function_space.num_sub_spaces == 3 and u.function_space.ufl_element().degree() == 1:
+            self.near_nullspace = rigid_body_modes(u.function_space, self.A)
+            self.A.setNearNullSpace(self.near_nullspace)
         self._volume_csr = None
         self.pattern_builds = 0
 
@@ -66,6 +71,8 @@ class Problem:
                                   comm=self.A.getComm())
         A.setLGMap(*self.A.getLGMap())
         A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
+        if self.near_nullspace is not None:
+            A.setNearNullSpace(self.near_nullspace)
         self.A.destroy()
         self.A = A
         self.pattern_builds += 1
@@ -116,6 +123,48 @@ def set_prefixed_options(prefix, options):
         opts[prefix + key] = value
 
 
+def linear_solver_options(solver, num_unknowns):
+    """PETSc options of the linear solver the scene asks for: "direct"
+    (MUMPS LU), "iterative" (GMRES, right-preconditioned by smoothed-
+    aggregation AMG with the rigid-body modes as near-nullspace; GMRES
+    because friction and follower loads make the tangent non-symmetric), or
+    "auto": direct up to solver.direct_max_unknowns, iterative above (a direct
+    factorisation's memory and time grow faster than linearly in 3D)."""
+    kind = solver["linear"]
+    if kind == "auto":
+        kind = "direct" if num_unknowns <= solver["direct_max_unknowns"] else "iterative"
+    if kind == "direct":
+        return kind, {"ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}
+    return kind, {"ksp_type": "gmres", "ksp_gmres_restart": 200, "ksp_pc_side": "right",
+                  "ksp_rtol": 1e-8, "ksp_max_it": 1000, "pc_type": "gamg",
+                  "pc_gamg_coarse_eq_limit": 1000, "mg_levels_ksp_type": "chebyshev",
+                  "mg_levels_pc_type": "jacobi", "mg_levels_ksp_max_it": 3}
+
+
+def rigid_body_modes(V, A):
+    """The six rigid-body modes of the displacement space V (three
+    translations, three rotations about the centroid), orthonormalised, as a
+    PETSc near-nullspace for A (what GAMG needs to coarsen elasticity)."""
+    X = dfx.node_coordinates(V)[: dfx.num_owned_nodes(V)]
+    comm = V.mesh.comm
+    centre = comm.allreduce(X.sum(axis=0), op=MPI.SUM) / max(comm.allreduce(len(X), op=MPI.SUM), 1)
+    Y = X - centre
+    vecs = [A.createVecLeft() for _ in range(6)]
+    for k in range(3):
+        a = vecs[k].getArray()
+        a[k::3] = 1.0
+    for v, (i, j) in zip(vecs[3:], [(0, 1), (1, 2), (2, 0)]):
+        a = v.getArray()
+        a[i::3], a[j::3] = -Y[:, j], Y[:, i]
+    basis = []
+    for v in vecs:  # Gram–Schmidt (the PETSc nullspace must be orthonormal)
+        for q in basis:
+            v.axpy(-v.dot(q), q)
+        v.normalize()
+        basis.append(v)
+    return PETSc.NullSpace().create(vectors=basis, comm=A.getComm())
+
+
 def make_snes(problem, comm, solver, prefix="hc_", frictional=False):
     """A newtonls SNES with MUMPS LU by default; solver["petsc"] options
     (without prefix) override anything. Line search "auto": full Newton steps
@@ -129,10 +178,9 @@ def make_snes(problem, comm, solver, prefix="hc_", frictional=False):
         "snes_type": "newtonls",
         "snes_linesearch_type": (("bt" if frictional else "basic") if solver["linesearch"] == "auto"
                                  else solver["linesearch"]),
-        "ksp_type": "preonly",
-        "pc_type": "lu",
-        "pc_factor_mat_solver_type": "mumps",
     }
+    problem.linear_kind, linear = linear_solver_options(solver, problem.A.getSize()[0])
+    defaults.update(linear)
     set_prefixed_options(prefix, {**defaults, **solver["petsc"]})
     snes.setFunction(problem.residual, problem.b)
     snes.setJacobian(problem.jacobian, problem.A)

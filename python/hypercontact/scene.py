@@ -227,6 +227,10 @@ SCHEMA = {
         "max_it": Key("integer", 25, (lambda x: 1 <= x <= 1000, "an integer from 1 to 1000")),
         "linesearch": Key("string", "auto", (lambda x: x in ("auto", "basic", "bt", "l2", "cp"),
                                              "auto or a PETSc SNES line search: basic, bt, l2 or cp")),
+        "linear": Key("string", "auto", (lambda x: x in ("auto", "direct", "iterative"),
+                                         '"auto" (direct up to direct_max_unknowns, else iterative), "direct" '
+                                         '(MUMPS LU) or "iterative" (GMRES + GAMG with the rigid-body modes)')),
+        "direct_max_unknowns": Key("integer", 200000, POSITIVE),
         "petsc": Key("table", {}),
     },
     "output": {

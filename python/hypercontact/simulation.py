@@ -20,7 +20,7 @@ from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, Di
 from .continuation import step as continuation_step
 from . import penalty
 from .forms import loads, materials, volume
-from .problem import Problem, converged_reason_name, make_snes, residual_norms_of
+from .problem import Problem, converged_reason_name, linear_solver_options, make_snes, residual_norms_of
 from .results import ResultsWriter, first_piola_stress
 from .scene import SceneError
 from .timing import Timers
@@ -176,6 +176,11 @@ class Simulation:
                 self.effects.append(f"{n} {what}{'s' if n > 1 else ''}")
         self.effects.append({"load": "load control", "arclength": "arc-length continuation",
                              "displacement": "displacement control"}[sc["steps"]["control"]])
+        if sc["steps"]["control"] == "load":
+            kind, _ = linear_solver_options(sc["solver"], dfx.num_global_dofs(self.w.function_space))
+            self.effects.append("direct linear solver (MUMPS LU)" if kind == "direct" else
+                                "iterative linear solver (GMRES + GAMG, rigid-body near-nullspace)")
+        self.linear_iterations = []  # Krylov iterations of each load step's Newton solve
 
     def _automatic_penalty(self, c, slave_tag):
         """ε_N = penalty_factor × M / h from the slave body's material (see
@@ -443,6 +448,7 @@ class Simulation:
         x = self.problem.x
         self.w.vector.copy(x)
         self.snes.solve(None, x)
+        self.linear_iterations.append(self.snes.getLinearSolveIterations())
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
         # every rank must take the same branch: a NaN on one rank fails the step on all

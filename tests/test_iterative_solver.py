@@ -1,0 +1,43 @@
+"""Big problems: GMRES + smoothed-aggregation AMG with the rigid-body
+near-nullspace. A scaled-down scaling check: the iterative solver gives the
+direct solver's answer, and its Krylov iteration count per Newton iteration
+does not grow by more than 1.5× from one uniform refinement to the next."""
+import tomllib
+
+import pytest
+from mpi4py import MPI
+
+from hypercontact import scene
+from hypercontact.problem import linear_solver_options
+from hypercontact.simulation import Simulation
+
+from conftest import ROOT
+
+
+def punch(n, m, linear, out):
+    data = tomllib.loads((ROOT / "scenes" / "punch.toml").read_text())
+    data["mesh"].update(n=n, m=m)
+    data["output"]["xdmf"] = False
+    data["solver"]["linear"] = linear
+    sc = scene.load(data, [f"output.dir={out}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    writer = sim.run(out_dir=str(out))
+    newton = sum(s["newton_iterations"] for s in writer.steps)
+    return sim, writer, sum(sim.linear_iterations) / newton
+
+
+def test_auto_choice_by_size():
+    solver = {"linear": "auto", "direct_max_unknowns": 1000}
+    assert linear_solver_options(solver, 1000)[0] == "direct"
+    kind, options = linear_solver_options(solver, 1001)
+    assert kind == "iterative" and options["pc_type"] == "gamg" and options["ksp_type"] == "gmres"
+
+
+def test_iterative_equals_direct_and_iterations_stay_bounded(tmp_path):
+    sim_d, w_d, _ = punch(8, 2, "direct", tmp_path / "d")
+    sim_i, w_i, its_coarse = punch(8, 2, "iterative", tmp_path / "i8")
+    assert "iterative linear solver" in " ".join(sim_i.effects)
+    assert w_i.steps[-1]["punch_fz"] == pytest.approx(w_d.steps[-1]["punch_fz"], rel=1e-6)
+    _, _, its_fine = punch(16, 4, "iterative", tmp_path / "i16")
+    print(f"Krylov iterations per Newton iteration: {its_coarse:.1f} (8x8x2), {its_fine:.1f} (16x16x4)")
+    assert its_fine <= 1.5 * its_coarse
