@@ -183,7 +183,8 @@ class ResultsWriter:
                 self._csv.writerow([step[k] for k in self.columns])
             self._csv_file.flush()
 
-    def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=()):
+    def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
+                   active_set_changes=0):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         fields = self._fields(load_factor) if self.xdmf is not None and self._frames_on_disk == 0 else None
         row = {"step": len(self.steps) + 1, "load_factor": load_factor,
@@ -208,7 +209,7 @@ class ResultsWriter:
         for name, value in self.pressures.items():
             row[name] = load_factor * value
         self.steps.append({**row, "residual_norms": norms, "active_set_settled_at": settled_from,
-                           "update_norms": list(update_norms)})
+                           "active_set_changes": active_set_changes, "update_norms": list(update_norms)})
         if self.rank0:
             self._csv.writerow([row[k] for k in self.columns])
             self._csv_file.flush()

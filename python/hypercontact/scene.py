@@ -216,6 +216,7 @@ SCHEMA = {
         "grow_below": Key("integer", 5, NON_NEGATIVE),
         "growth": Key("number", 1.5, (lambda x: x >= 1, ">= 1")),
         "max_steps": Key("integer", 200, POSITIVE),
+        "chatter_warning": Key("integer", 6, POSITIVE),
         "target_iterations": Key("integer", 5, POSITIVE),
         "stop_probe": Key("string", ""),
         "stop_component": Key("string", "x", (lambda x: x in ("x", "y", "z"), '"x", "y" or "z"')),

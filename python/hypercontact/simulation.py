@@ -460,6 +460,12 @@ class Simulation:
             self.sync_displacement()
         return converged, self.snes.getIterationNumber(), norms, converged_reason_name(reason)
 
+    def active_set_changes(self):
+        """Newton iterations of the last solve in which some contact's active
+        set (closed nodes) changed: the chattering count of the step."""
+        sets = self.active_sets
+        return sum(1 for a, b in zip(sets, sets[1:]) if a != b)
+
     def last_active_set_change(self):
         """Index of the first Newton iterate from which the active set stayed
         fixed in the last solve."""
@@ -566,8 +572,12 @@ class Simulation:
                     c.commit(self.u)
                 u_saved[:] = self.w.x.array
                 with self.timers("output"):
+                    changes = self.active_set_changes()
                     row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
-                                            self.update_norms)
+                                            self.update_norms, changes)
+                if changes >= st["chatter_warning"]:
+                    self.log(f"   the contact active set changed in {changes} Newton iterations of this step "
+                             "(chattering): smaller steps or a backtracking line search damp it")
                 self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
                          f"|R| = {norms[-1]:.2e}  ({reason}){self._eta(lam)}")
                 if its <= st["grow_below"]:

@@ -75,3 +75,23 @@ def test_bodies_that_separate(tmp_path):
     assert c.num_closed(sim.u) == 0
     assert np.allclose(c.force(sim.u), 0.0)
     assert np.all(np.isfinite(sim.u.x.array))
+
+
+def test_active_set_changes_are_counted_and_reported(tmp_path):
+    """Each step's count of Newton iterations whose contact active set
+    changed is in summary.json; past the threshold steps.chatter_warning the
+    run says so."""
+    import json
+
+    messages = []
+    data = punch()
+    data["steps"]["chatter_warning"] = 1
+    sc = scene.load(data, [f"output.dir={tmp_path}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=messages.append)
+    w = sim.run(out_dir=str(tmp_path))
+    steps = json.loads((tmp_path / "summary.json").read_text())["steps"]
+    changes = [s["active_set_changes"] for s in steps]
+    assert changes[0] >= 1  # the first step closes the contact: its active set grows
+    assert all(0 <= c <= s["newton_iterations"] for c, s in zip(changes, steps))
+    assert sum("chattering" in m for m in messages) == sum(c >= 1 for c in changes)
+    assert len(w.steps) == len(steps)
