@@ -95,3 +95,25 @@ def test_active_set_changes_are_counted_and_reported(tmp_path):
     assert all(0 <= c <= s["newton_iterations"] for c, s in zip(changes, steps))
     assert sum("chattering" in m for m in messages) == sum(c >= 1 for c in changes)
     assert len(w.steps) == len(steps)
+
+
+@pytest.mark.parametrize("ratio", [10.0, 1e2, 1e3, 1e4])
+def test_near_incompressible_sphere_limit_pressure(ratio, tmp_path):
+    """K/μ = 10 … 10⁴ on the inflated sphere with the locking-free mixed
+    formulation (quadratic, 4 × 4 × 1 octant): arc length passes the limit
+    point and its pressure is within 1 % of the 1D oracle's for that K."""
+    from hypercontact.sphere1d import PAPER, limit_point
+
+    mu = 2.0 * (PAPER["alpha1"] + PAPER["alpha2"])
+    K = ratio * mu
+    params = dict(PAPER, K=K, i2="usual")
+    u_ref, p_ref = limit_point("mooney_rivlin", params)
+    sc = scene.load(ROOT / "scenes" / "sphere.toml", [
+        f"output.dir={tmp_path}", "output.xdmf=false", f"material.parameters.K={K}", "mesh.n=4", "mesh.m=1",
+        'discretisation.formulation="mixed"', "discretisation.quadrature_degree=4", "steps.max=0.15",
+        f"steps.stop_value={1.2 * u_ref}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    writer = sim.run()
+    assert len(writer.limit_points) == 1
+    p = np.array([s["pressure_inner"] for s in writer.steps])
+    assert p.max() == pytest.approx(p_ref, rel=0.01)
