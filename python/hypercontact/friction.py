@@ -24,7 +24,29 @@ from .contact import RigidContact
 OPEN, STICK, SLIP = 0, 1, 2
 
 
-class FrictionalRigidContact(RigidContact):
+class FrictionAccounting:
+    """What every frictional contact keeps over converged steps: dissipation
+    (per step, accumulated, per point) and accumulated slip, and the
+    stick/slip counts of the last converged state (``self.committed``)."""
+
+    def accumulate(self, state):
+        """Add a converged step's dissipation and slip (state: the kernel's)."""
+        dissipation = np.asarray(state.dissipation)
+        self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
+        self.dissipation += self.dissipation_step
+        self.dissipation_nodes = self.dissipation_nodes + dissipation
+        self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
+
+    def stick_slip_counts(self):
+        """(sticking, slipping) slave points at the last converged step, all ranks."""
+        if self.committed is None:
+            return 0, 0
+        s = np.asarray(self.committed.state)
+        local = np.array([np.count_nonzero(s == STICK), np.count_nonzero(s == SLIP)], dtype=np.int64)
+        return tuple(int(v) for v in self.comm.allreduce(local, op=MPI.SUM))
+
+
+class FrictionalRigidContact(FrictionAccounting, RigidContact):
     """Normal penalty plus Coulomb friction (penalty ε_T, coefficient μ)."""
 
     def __init__(self, spec, V, facet_tags, surface_tag, constrained):
@@ -76,24 +98,12 @@ class FrictionalRigidContact(RigidContact):
     def commit(self, u):
         """Make the converged state the history of the next step."""
         state = self.committed = self.friction_state(u)
-        dissipation = np.asarray(state.dissipation)
-        self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
-        self.dissipation += self.dissipation_step
-        self.dissipation_nodes = self.dissipation_nodes + dissipation
-        self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
+        self.accumulate(state)
         self.t_old = np.ascontiguousarray(state.traction)
         self.xi = self.current_coordinates(u).copy()
         self.lam_committed = self.load_factor
         self.multipliers_committed = self.multipliers.copy()  # augmented Lagrangian (else empty)
         return state
-
-    def stick_slip_counts(self):
-        """(sticking, slipping) slave nodes at the last converged step, all ranks."""
-        if self.committed is None:
-            return 0, 0
-        s = np.asarray(self.committed.state)
-        local = np.array([np.count_nonzero(s == STICK), np.count_nonzero(s == SLIP)], dtype=np.int64)
-        return tuple(int(v) for v in self.comm.allreduce(local, op=MPI.SUM))
 
     def surface_fields(self):
         """Per slave node of this rank, at the last converged step: status

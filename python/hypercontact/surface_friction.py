@@ -25,11 +25,11 @@ import numpy as np
 from mpi4py import MPI
 
 from . import _cpp
-from .friction import OPEN, SLIP, STICK
+from .friction import OPEN, SLIP, FrictionAccounting
 from .surface_contact import SurfaceContact
 
 
-class FrictionalSurfaceContact(SurfaceContact):
+class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
     """Node-to-surface normal penalty plus Coulomb friction (ε_T, μ)."""
 
     def __init__(self, spec, V, facet_tags, slave_tags, master_tags, constrained, name=None):
@@ -102,22 +102,10 @@ class FrictionalSurfaceContact(SurfaceContact):
     def commit(self, u):
         """Make the converged state the history of the next step."""
         state = self.committed = self.evaluate(u)
-        dissipation = np.asarray(state.dissipation)
-        self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
-        self.dissipation += self.dissipation_step
-        self.dissipation_nodes = self.dissipation_nodes + dissipation
-        self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
+        self.accumulate(state)
         self._store_history(state)
         self.lam_committed = getattr(self, "load_factor", 0.0)
         return state
-
-    def stick_slip_counts(self):
-        """(sticking, slipping) slave points at the last converged step, all ranks."""
-        if self.committed is None:
-            return 0, 0
-        s = np.asarray(self.committed.state)
-        local = np.array([np.count_nonzero(s == STICK), np.count_nonzero(s == SLIP)], dtype=np.int64)
-        return tuple(int(v) for v in self.comm.allreduce(local, op=MPI.SUM))
 
     def surface_fields(self):
         """Per slave node of this rank at the last converged step, as
