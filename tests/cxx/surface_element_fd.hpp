@@ -2,6 +2,9 @@
 // coordinates and central finite differences over all of them.
 #pragma once
 
+#include <Eigen/Geometry>
+#include <initializer_list>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <hypercontact/facet_projection.hpp>
@@ -68,6 +71,19 @@ Eigen::MatrixXd fd_jacobian_stacked(F f, const Eigen::VectorXd& x) {
     J.col(j) = (f(xp) - f(xm)) / (2 * h);
   }
   return J;
+}
+
+/// Rotation and shift that put test facets off every axis.
+inline const Eigen::Matrix3d test_rotation =
+    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+inline const Eigen::Vector3d test_shift(1, 2, 3);
+
+/// Nodes given in a local frame, rotated and shifted so that nothing is axis-aligned.
+inline NodeCoordinates placed(std::initializer_list<Eigen::Vector3d> local) {
+  NodeCoordinates x(3, static_cast<Eigen::Index>(local.size()));
+  int j = 0;
+  for (const Eigen::Vector3d& p : local) x.col(j++) = test_rotation * p + test_shift;
+  return x;
 }
 
 }  // namespace hypercontact::test

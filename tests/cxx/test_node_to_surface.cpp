@@ -29,17 +29,9 @@ using test::unstack;
 constexpr double w = 0.37;
 constexpr double eps_n = 250.0;
 
-const Eigen::Matrix3d rotation =
-    Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
-const Eigen::Vector3d shift(1, 2, 3);
-
-/// Nodes given in a local frame, rotated and shifted so that nothing is axis-aligned.
-NodeCoordinates placed(std::initializer_list<Eigen::Vector3d> local) {
-  NodeCoordinates x(3, static_cast<Eigen::Index>(local.size()));
-  int j = 0;
-  for (const Eigen::Vector3d& p : local) x.col(j++) = rotation * p + shift;
-  return x;
-}
+using test::placed;
+const Eigen::Matrix3d& rotation = test::test_rotation;
+const Eigen::Vector3d& shift = test::test_shift;
 
 const NodeCoordinates flat_quad = placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
 /// Non-planar: n · x_,12 ≈ 0.2, so the curvature term r·x_,12 of H matters when g ≠ 0.
