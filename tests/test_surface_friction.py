@@ -157,3 +157,37 @@ def test_mu_zero_is_exactly_frictionless(tmp_path, monkeypatch):
         out.append((b.array.copy(), A.convert("dense").getDenseArray().copy()))
     assert np.count_nonzero(out[0][0]) > 0
     assert np.array_equal(out[0][0], out[1][0]) and np.array_equal(out[0][1], out[1][1])
+
+
+def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path):
+    """In the drag phase, the 2nd Newton solve fails and is cut back, once
+    after a real solve that iterated through the friction code and once
+    without any iteration: both runs end with the same solution and the same
+    history (old facets, ξ, tractions, dissipation)."""
+    def run(out, real_attempt):
+        sim = Simulation(slider_scene(), MPI.COMM_SELF, log=lambda *a, **k: None)
+        run_phase(sim, {1: [0.0, 0.0, -PRESS]}, out / "press")
+        solve, calls = sim.solve_step, []
+
+        def failing_once():
+            calls.append(sim.load_factor.value.item())
+            if len(calls) != 2:
+                return solve()
+            if real_attempt:
+                ok, its, norms, reason = solve()
+                assert its >= 1
+            return False, 0, [], "FORCED_FAILURE"
+
+        sim.solve_step = failing_once
+        run_phase(sim, {1: [0.004, 0.0, -PRESS]}, out / "drag")
+        return sim, calls
+
+    sim_a, calls_a = run(tmp_path / "real", True)
+    sim_b, calls_b = run(tmp_path / "none", False)
+    assert calls_a == calls_b and calls_a[2] < calls_a[1]  # the 2nd attempt was cut back
+    a, b = sim_a.contacts[0], sim_b.contacts[0]
+    assert np.abs(sim_a.u.x.array - sim_b.u.x.array).max() <= 1e-10 * np.abs(sim_b.u.x.array).max()
+    assert np.array_equal(a.old_facet, b.old_facet)
+    assert np.abs(a.xi - b.xi).max() <= 1e-10
+    assert np.abs(a.t_old - b.t_old).max() <= 1e-10 * np.abs(b.t_old).max() and np.abs(b.t_old).max() > 0
+    assert a.dissipation == pytest.approx(b.dissipation, rel=1e-10, abs=1e-300)
