@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -64,6 +65,15 @@ inline std::span<double> as_writable_span(py::array& a, const char* name) {
 
 inline py::array_t<double> to_numpy(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+/// A flat vector as a numpy array of `width` columns (1: a 1-D array).
+template <typename T>
+py::array_t<T> to_numpy_table(const std::vector<T>& v, py::ssize_t width) {
+  py::array_t<T> a(width == 1 ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size())}
+                              : std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size()) / width, width});
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
 }
 
 }  // namespace hypercontact::python

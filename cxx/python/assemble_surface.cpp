@@ -9,25 +9,15 @@
 
 namespace hypercontact::python {
 
-namespace {
-template <typename T>
-py::array_t<T> rows(const std::vector<T>& v, py::ssize_t width) {
-  py::array_t<T> a(width == 1 ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size())}
-                              : std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size()) / width, width});
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-}  // namespace
-
 void declare_assemble_surface(py::module_& m) {
   py::class_<SurfaceContactState>(m, "SurfaceContactState", "Output of assemble_surface_contact")
-      .def_property_readonly("facet", [](const SurfaceContactState& s) { return rows(s.facet, 1); })
-      .def_property_readonly("feature", [](const SurfaceContactState& s) { return rows(s.feature, 1); })
-      .def_property_readonly("status", [](const SurfaceContactState& s) { return rows(s.status, 1); })
-      .def_property_readonly("xi", [](const SurfaceContactState& s) { return rows(s.xi, 2); })
-      .def_property_readonly("gap", [](const SurfaceContactState& s) { return rows(s.gap, 1); })
-      .def_property_readonly("pressure", [](const SurfaceContactState& s) { return rows(s.pressure, 1); })
-      .def_property_readonly("normal", [](const SurfaceContactState& s) { return rows(s.normal, 3); })
+      .def_property_readonly("facet", [](const SurfaceContactState& s) { return to_numpy_table(s.facet, 1); })
+      .def_property_readonly("feature", [](const SurfaceContactState& s) { return to_numpy_table(s.feature, 1); })
+      .def_property_readonly("status", [](const SurfaceContactState& s) { return to_numpy_table(s.status, 1); })
+      .def_property_readonly("xi", [](const SurfaceContactState& s) { return to_numpy_table(s.xi, 2); })
+      .def_property_readonly("gap", [](const SurfaceContactState& s) { return to_numpy_table(s.gap, 1); })
+      .def_property_readonly("pressure", [](const SurfaceContactState& s) { return to_numpy_table(s.pressure, 1); })
+      .def_property_readonly("normal", [](const SurfaceContactState& s) { return to_numpy_table(s.normal, 3); })
       .def_readonly("force", &SurfaceContactState::force,
                     "force of the master on the slave body, -sum of the slave residuals (3,)")
       .def_readonly("num_closed", &SurfaceContactState::num_closed);

@@ -9,30 +9,20 @@
 
 namespace hypercontact::python {
 
-namespace {
-template <typename T>
-py::array_t<T> table(const std::vector<T>& v, py::ssize_t width) {
-  py::array_t<T> a(width == 1 ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size())}
-                              : std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size()) / width, width});
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-}  // namespace
-
 void declare_assemble_surface_friction(py::module_& m) {
   using S = SurfaceFrictionState;
   py::class_<S>(m, "SurfaceFrictionState", "Output of assemble_surface_friction")
-      .def_property_readonly("facet", [](const S& s) { return table(s.facet, 1); })
-      .def_property_readonly("feature", [](const S& s) { return table(s.feature, 1); })
-      .def_property_readonly("status", [](const S& s) { return table(s.status, 1); })
-      .def_property_readonly("xi", [](const S& s) { return table(s.xi, 2); })
-      .def_property_readonly("gap", [](const S& s) { return table(s.gap, 1); })
-      .def_property_readonly("pressure", [](const S& s) { return table(s.pressure, 1); })
-      .def_property_readonly("normal", [](const S& s) { return table(s.normal, 3); })
-      .def_property_readonly("traction", [](const S& s) { return table(s.traction, 3); })
-      .def_property_readonly("slip_increment", [](const S& s) { return table(s.slip_increment, 3); })
-      .def_property_readonly("dissipation", [](const S& s) { return table(s.dissipation, 1); })
-      .def_property_readonly("state", [](const S& s) { return table(s.stick, 1); },
+      .def_property_readonly("facet", [](const S& s) { return to_numpy_table(s.facet, 1); })
+      .def_property_readonly("feature", [](const S& s) { return to_numpy_table(s.feature, 1); })
+      .def_property_readonly("status", [](const S& s) { return to_numpy_table(s.status, 1); })
+      .def_property_readonly("xi", [](const S& s) { return to_numpy_table(s.xi, 2); })
+      .def_property_readonly("gap", [](const S& s) { return to_numpy_table(s.gap, 1); })
+      .def_property_readonly("pressure", [](const S& s) { return to_numpy_table(s.pressure, 1); })
+      .def_property_readonly("normal", [](const S& s) { return to_numpy_table(s.normal, 3); })
+      .def_property_readonly("traction", [](const S& s) { return to_numpy_table(s.traction, 3); })
+      .def_property_readonly("slip_increment", [](const S& s) { return to_numpy_table(s.slip_increment, 3); })
+      .def_property_readonly("dissipation", [](const S& s) { return to_numpy_table(s.dissipation, 1); })
+      .def_property_readonly("state", [](const S& s) { return to_numpy_table(s.stick, 1); },
                              "0 open, 1 stick, 2 slip")
       .def_readonly("normal_force", &S::force, "normal part of the force of the master on the slave body")
       .def_readonly("force", &S::total_force, "force of the master on the slave body, normal + friction (3,)")

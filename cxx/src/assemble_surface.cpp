@@ -78,6 +78,19 @@ std::vector<char> master_boundary_nodes(const SurfaceContactInput& in) {
   return boundary_node;
 }
 
+bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char>& boundary_node,
+                           std::size_t p, SurfaceContactState& s, SlavePointPairing& pr,
+                           NodeCoordinates& master, SurfaceContact& e) {
+  pr = pair_slave_point(in, boundary_node, p, s);
+  if (pr.status != PairingStatus::Paired || pr.gap > pr.touch) return false;
+  master = gather_facet(pr.facet, in.facets, 4, in.x);
+  e = node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch);
+  if (!e.closed) return false;
+  ++s.num_closed;
+  s.pressure[p] = e.pressure;
+  return true;
+}
+
 void init_state(SurfaceContactState& s, std::size_t np) {
   s.facet.assign(np, -1);
   s.feature.assign(np, -1);
@@ -174,17 +187,13 @@ SurfaceContactState assemble_surface_contact(const SurfaceContactInput& in, Vec 
   if (b != nullptr && VecSetOption(b, VEC_IGNORE_NEGATIVE_INDICES, PETSC_TRUE) != 0)
     throw std::runtime_error("assemble_surface_contact: VecSetOption failed");
   for (std::size_t p = 0; p < np; ++p) {
-    detail::SlavePointPairing pr = detail::pair_slave_point(in, boundary_node, p, s);
-    if (pr.status != PairingStatus::Paired || pr.gap > pr.touch) continue;
+    detail::SlavePointPairing pr;
+    NodeCoordinates master;
+    SurfaceContact e;
+    if (!detail::closed_normal_element(in, boundary_node, p, s, pr, master, e)) continue;
     const std::int32_t f = pr.facet;
     const int ns = static_cast<int>(pr.nodes.size());
     std::vector<std::int32_t>& nodes = pr.nodes;
-    const NodeCoordinates master = gather_facet(f, in.facets, 4, in.x);
-    const SurfaceContact e =
-        node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch);
-    if (!e.closed) continue;
-    ++s.num_closed;
-    s.pressure[p] = e.pressure;
     for (int i = 0; i < 4; ++i) nodes.push_back(in.facets[4 * f + i]);
     const int n = static_cast<int>(3 * nodes.size());
     idx.resize(n);

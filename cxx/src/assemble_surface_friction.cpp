@@ -36,16 +36,12 @@ SurfaceFrictionState assemble_surface_friction(const SurfaceFrictionInput& fin, 
   if (b != nullptr && VecSetOption(b, VEC_IGNORE_NEGATIVE_INDICES, PETSC_TRUE) != 0)
     throw std::runtime_error(std::string(who) + ": VecSetOption failed");
   for (std::size_t p = 0; p < np; ++p) {
-    detail::SlavePointPairing pr = detail::pair_slave_point(in, boundary_node, p, s);
-    if (pr.status != PairingStatus::Paired || pr.gap > pr.touch) continue;
+    detail::SlavePointPairing pr;
+    NodeCoordinates master;
+    SurfaceContact e;
+    if (!detail::closed_normal_element(in, boundary_node, p, s, pr, master, e)) continue;
     const std::int32_t f = pr.facet;
     const int ns = static_cast<int>(pr.nodes.size());
-    const NodeCoordinates master = gather_facet(f, in.facets, 4, in.x);
-    const SurfaceContact e =
-        node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch);
-    if (!e.closed) continue;
-    ++s.num_closed;
-    s.pressure[p] = e.pressure;
 
     // History: the old master material point, or none (then the current point, t_old = 0).
     const std::int32_t fo = fin.old_facet[p];

@@ -34,6 +34,13 @@ struct SlavePointPairing {
 SlavePointPairing pair_slave_point(const SurfaceContactInput& in, const std::vector<char>& boundary_node,
                                    std::size_t p, SurfaceContactState& s);
 
+/// Pairs slave point p and, if it is paired and closed, evaluates its normal element
+/// (node_to_surface against `master`, the closest facet's nodes) and records it in s (num_closed,
+/// pressure). Returns false, leaving master and e unset, if the point is not closed.
+bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char>& boundary_node,
+                           std::size_t p, SurfaceContactState& s, SlavePointPairing& pr,
+                           NodeCoordinates& master, SurfaceContact& e);
+
 /// s with every per-point array sized for np points and the totals zero.
 void init_state(SurfaceContactState& s, std::size_t np);
 
