@@ -9,7 +9,9 @@ Levels scale the cell counts of both bodies (block n × n × m, ball n, m):
 coarse 8/8 + 6/6, medium 12/12 + 9/9, default 16/16 + 12/12 (the scene), fine 22/22 + 16/16
 (fine: > 14 min for its first load step of 21 Newton its on the shared 2-core machine, not in the report).
 
-Hertz, two identical elastic bodies (E, ν), sphere radius R on a plane:
+Hertz (closed form and profile fit in hypercontact.hertz, which the study
+command's ``reference = "hertz:…"`` uses too), two identical elastic bodies
+(E, ν), sphere radius R on a plane:
 E* = E / (2 (1 − ν²)), a_H = (3 F R / (4 E*))^(1/3), p0_H = 3 F / (2 π a_H²),
 approach of distant points δ_H = a_H² / R. F is the whole-sphere force
 (4 × the quarter model's contact force of the block on the ball).
@@ -51,9 +53,10 @@ DRIVE = 0.3
 
 
 def hertz(F):
-    """(a_H, p0_H, δ_H) for the whole-sphere force F."""
-    a = (3.0 * F * R / (4.0 * E_STAR)) ** (1.0 / 3.0)
-    return a, 3.0 * F / (2.0 * np.pi * a ** 2), a ** 2 / R
+    """(a_H, p0_H, δ_H) for the whole-sphere force F (hypercontact.hertz)."""
+    from hypercontact.hertz import closed_form
+
+    return closed_form(F, R, E_STAR)
 
 
 def overrides(nb, mb, ns, ms):
@@ -74,15 +77,10 @@ def run(nb, mb, ns, ms, out_dir, comm=MPI.COMM_WORLD, extra=()):
 def slave_profile(sim):
     """Gathered on every rank: reference and current coordinates, gap and
     pressure of all slave nodes, and the whole-sphere force F."""
-    from hypercontact import _dolfinx as dfx
+    from hypercontact.hertz import slave_points
 
     c = sim.contacts[0]
-    st = c.evaluate(sim.u)
-    nodes = c.nodes
-    X = dfx.node_coordinates(sim.V)[nodes]
-    x = X + sim.u.x.array.reshape(-1, 3)[nodes]
-    parts = sim.comm.allgather((X, x, np.asarray(st.gap), np.asarray(st.pressure)))
-    X, x, gap, p = (np.concatenate([q[i] for q in parts]) for i in range(4))
+    X, x, gap, p = slave_points(c, sim.u)
     F = 4.0 * float(c.force(sim.u)[2])
     return X, x, gap, p, F
 
@@ -98,11 +96,10 @@ def contact_radius(X, x, gap, p):
     i, j = line[k], line[k + 1]
     a_gap = r[i] + (r[j] - r[i]) * (-gap[i]) / (gap[j] - gap[i])
     h_slave = R0[j] - R0[i]
+    from hypercontact.hertz import fit_profile
+
     cl = np.flatnonzero(gap < 0.0)
-    A = np.stack([np.ones(len(cl)), -r[cl] ** 2], axis=1)
-    c0, c1 = np.linalg.lstsq(A, p[cl] ** 2, rcond=None)[0]
-    p0_fit = np.sqrt(c0)
-    a_fit = np.sqrt(c0 / c1)
+    a_fit, p0_fit = fit_profile(r, p, cl)
     pole = np.argmin(R0)
     return dict(a_gap=float(a_gap), bracket=[float(r[i]), float(r[j])], h_slave=float(h_slave),
                 a_fit=float(a_fit), p0_fit=float(p0_fit), p_pole=float(p[pole]), pole_r=float(R0[pole]),
@@ -116,10 +113,9 @@ def fit_off_planes(row):
     if "on_plane" not in row["profile"]:
         return float("nan"), float("nan")
     on = np.asarray(row["profile"]["on_plane"])
-    cl = (pp > 0.0) & ~on
-    A = np.stack([np.ones(cl.sum()), -rr[cl] ** 2], axis=1)
-    c0, c1 = np.linalg.lstsq(A, pp[cl] ** 2, rcond=None)[0]
-    return float(np.sqrt(c0 / c1)), float(np.sqrt(c0))
+    from hypercontact.hertz import fit_profile
+
+    return fit_profile(rr, pp, (pp > 0.0) & ~on)
 
 
 def master_h(nb, a):
