@@ -137,3 +137,42 @@ def test_assembled_tangent_is_the_derivative_of_the_residual(tmp_path):
             fd = (residual(xp) - residual(xm)) / (2 * h)
             errors.append(np.linalg.norm(fd - Ad.array) / np.linalg.norm(fd))
         assert min(errors) <= 1e-6, errors
+
+
+def test_friction_on_punch_and_base_at_once(coarse, tmp_path):
+    """(μ1, μ2) = (0.3, 1), scenes/punch_mu0.3_1.toml, on 4 × 4 × 1 (issue
+    #4: full Newton steps cycle from the first step; the scene's l2 line
+    search converges): full indentation, equilibrium, every slipping node of
+    both contacts on its Coulomb cone |t| = μ p_N and every sticking node
+    inside it; friction on both faces holds the plate at least as much as
+    either alone: more force than either single-friction case, and the edge
+    and corner stay on the base as with base friction alone."""
+    import numpy as np
+
+    from hypercontact.friction import SLIP, STICK
+
+    sc = scene.load(ROOT / "scenes" / "punch_mu0.3_1.toml",
+                    ["mesh.n=4", "mesh.m=1", "output.xdmf=false", f"output.dir={tmp_path}"])
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(ResultsWriter, "draw_pictures", lambda self: {"skipped": "not drawn in this test"})
+        sim = Simulation(sc, MPI.COMM_SELF, log=quiet)
+        last = sim.run().steps[-1]
+    assert last["load_factor"] == pytest.approx(1.0)
+    assert last["punch_fz"] + last["base_fz"] == pytest.approx(0.0, abs=1e-8 * abs(last["punch_fz"]))
+    slipping = 0
+    for c, mu in zip(sim.contacts, (0.3, 1.0)):
+        state = c.committed
+        status = np.asarray(state.state)
+        p = np.asarray(c.evaluate(sim.u).pressure)
+        t = np.linalg.norm(np.asarray(state.traction), axis=1)
+        slip, stick = status == SLIP, status == STICK
+        assert np.allclose(t[slip], mu * p[slip], rtol=1e-9, atol=1e-12), c.name
+        assert np.all(t[stick] <= mu * p[stick] * (1 + 1e-9) + 1e-12), c.name
+        slipping += np.count_nonzero(slip)
+    assert slipping > 0
+    force = -last["punch_fz"]
+    assert force > -coarse["punch_mu0.3_0"][-1]["punch_fz"]
+    assert force > -coarse["punch_mu0_1"][-1]["punch_fz"]
+    base_only = coarse["punch_mu0_1"][-1]
+    for probe in ("edge_uz", "corner_uz"):  # on the base: at most the penalty's penetration scale
+        assert abs(last[probe]) < 1e-3 and abs(base_only[probe]) < 1e-3, probe
