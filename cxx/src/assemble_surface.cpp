@@ -1,5 +1,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <hypercontact/assemble_surface.hpp>
 #include <hypercontact/node_to_surface.hpp>
 #include <stdexcept>
@@ -53,6 +54,11 @@ void check_surface_input(const SurfaceContactInput& in, const char* who) {
   if (in.offsets.front() != 0 || in.offsets.back() != static_cast<std::int32_t>(in.candidates.size()))
     fail("offsets must start at 0 and end at the number of candidates");
   if (!(in.eps_n > 0)) fail("eps_n must be > 0");
+  if (!in.multipliers.empty() && in.multipliers.size() != np)
+    fail("multipliers has " + std::to_string(in.multipliers.size()) + " entries, expected " +
+         std::to_string(np) + " (one per slave point) or none");
+  for (double m : in.multipliers)
+    if (!(std::isfinite(m) && m >= 0)) fail("multipliers must be finite and >= 0");
   for (std::int32_t n : in.point_nodes)
     if (n >= static_cast<std::int32_t>(nn)) fail("a slave point node index is out of range");
   for (std::int32_t n : in.facets)
@@ -82,9 +88,13 @@ bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char
                            std::size_t p, SurfaceContactState& s, SlavePointPairing& pr,
                            NodeCoordinates& master, SurfaceContact& e) {
   pr = pair_slave_point(in, boundary_node, p, s);
-  if (pr.status != PairingStatus::Paired || pr.gap > pr.touch) return false;
+  const double lambda = in.multipliers.empty() ? 0.0 : in.multipliers[p];
+  // Augmented: active where λ_N − ε_N ĝ > 0, and ĝ ≥ g when g > 0, so g ≥ λ_N/ε_N is open.
+  if (pr.status != PairingStatus::Paired || (pr.gap > pr.touch && !(lambda > 0 && pr.gap < lambda / in.eps_n)))
+    return false;
   master = gather_facet(pr.facet, in.facets, 4, in.x);
-  e = node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch);
+  e = node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch,
+                      lambda);
   if (!e.closed) return false;
   ++s.num_closed;
   s.pressure[p] = e.pressure;

@@ -115,13 +115,82 @@ void check_parameters(double w, double eps_n, const char* who) {
 
 int rank(Feature f) { return f == Feature::Face ? 0 : f == Feature::Edge ? 1 : 2; }
 
+void check_multiplier(double lambda, const char* who) {
+  if (!(std::isfinite(lambda) && lambda >= 0))
+    throw std::invalid_argument(std::string(who) + ": the multiplier must be finite and >= 0, got " +
+                                std::to_string(lambda));
+}
+
+/// ĝ: g on the face; off it s |r| with s = −1 if g ≤ 0, else +1 (φ* = ½ ĝ²). `along` is the unit
+/// vector e with ∇ĝ = Pᵀ e: n on the face, s r/|r| off it (n if r = 0 there: a subgradient).
+struct SignedDistance {
+  double value;
+  Eigen::Vector3d along;
+  double distance;  ///< |r| (0 on the face: not used there)
+};
+
+SignedDistance signed_distance(const detail::SurfaceKinematics& k) {
+  if (k.T.cols() == 2) return {k.gap, k.normal, 0.0};
+  const double d = k.r.norm();
+  const double s = k.gap <= 0 ? -1.0 : 1.0;
+  if (!(d > 0)) return {0.0, k.normal, 0.0};
+  return {s * d, (s / d) * k.r, d};
+}
+
+struct SignedDistanceDerivatives {
+  Eigen::VectorXd gradient;  ///< ∇ĝ = Pᵀ e
+  Eigen::MatrixXd hessian;   ///< ∇²ĝ, symmetric
+};
+
+/// ∇ĝ and ∇²ĝ at x (derivatives over all 3 (ns + nm) coordinates).
+/// Face (ĝ = g, r = g n, φ* = ½ g², so g ∇²g = ∇²φ* − ∇g ∇gᵀ): with A = Pᵀ a (dofs × 2),
+/// C_α = P_,αᵀ n, M = aᵀa, κ = [0 n·x_,12; n·x_,12 0], H = M − g κ, B = g C − A and
+/// ∇²φ* = PᵀP − B H⁻¹ Bᵀ, PᵀP − Pᵀ n nᵀ P = A M⁻¹ Aᵀ and M⁻¹ − H⁻¹ = −g M⁻¹ κ H⁻¹ give, with no
+/// division by g,  ∇²g = −A M⁻¹ κ H⁻¹ Aᵀ + C H⁻¹ Aᵀ + A H⁻¹ Cᵀ − g C H⁻¹ Cᵀ.
+/// Edge, vertex (ĝ = s |r| = s √(2 φ*)): ∇²ĝ = s (∇²φ* − Pᵀ r̂ r̂ᵀ P)/|r|, r̂ = r/|r|, with
+/// ∇²φ* = PᵀP + B dξ*/dx (node_to_surface's penalty tangent over w ε_N); 0 if r = 0.
+SignedDistanceDerivatives signed_distance_derivatives(const detail::SurfaceKinematics& k,
+                                                      const detail::ProjectionDerivatives& d,
+                                                      const SignedDistance& sd) {
+  SignedDistanceDerivatives out;
+  out.gradient = k.P.transpose() * sd.along;
+  if (k.T.cols() == 2) {
+    const Eigen::Vector3d& n = k.normal;
+    const Eigen::MatrixXd A = k.P.transpose() * k.a;
+    Eigen::MatrixXd C(k.dofs, 2);
+    for (int alpha = 0; alpha < 2; ++alpha) C.col(alpha) = k.P_xi[alpha].transpose() * n;
+    const Eigen::Matrix2d M = k.a.transpose() * k.a;
+    Eigen::Matrix2d kappa = Eigen::Matrix2d::Zero();
+    kappa(0, 1) = kappa(1, 0) = n.dot(k.x12);
+    const Eigen::Matrix2d H = M - k.gap * kappa;
+    const Eigen::Matrix2d Hinv = H.inverse(), Minv = M.inverse();
+    const Eigen::MatrixXd hess = -A * (Minv * kappa * Hinv) * A.transpose() +
+                                 C * Hinv * A.transpose() + A * Hinv * C.transpose() -
+                                 k.gap * C * Hinv * C.transpose();
+    out.hessian = 0.5 * (hess + hess.transpose());
+    return out;
+  }
+  if (!(sd.distance > 0)) {
+    out.hessian = Eigen::MatrixXd::Zero(k.dofs, k.dofs);
+    return out;
+  }
+  const Eigen::Vector3d r_hat = k.r / sd.distance;
+  const Eigen::VectorXd Pr = k.P.transpose() * r_hat;
+  const double s = sd.value < 0 ? -1.0 : 1.0;
+  const Eigen::MatrixXd hess =
+      (s / sd.distance) * (k.P.transpose() * k.P + d.B * d.dxi_dx - Pr * Pr.transpose());
+  out.hessian = 0.5 * (hess + hess.transpose());
+  return out;
+}
+
 }  // namespace
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n, double touch) {
+                               double w, double eps_n, double touch, double lambda) {
   constexpr const char* who = "node_to_surface";
   check_parameters(w, eps_n, who);
+  check_multiplier(lambda, who);
   const detail::SurfaceKinematics k =
       detail::surface_kinematics(slave, weights, master, projection, who);
   SurfaceContact result{Eigen::VectorXd::Zero(k.dofs),
@@ -135,6 +204,20 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
                         false};
   if (!(touch >= 0))
     throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
+  if (lambda > 0) {  // augmented Lagrangian
+    const SignedDistance sd = signed_distance(k);
+    const double p = lambda - eps_n * sd.value;
+    if (!(p > 0)) return result;  // open
+    const detail::ProjectionDerivatives d = detail::projection_derivatives(k, who);
+    const SignedDistanceDerivatives dd = signed_distance_derivatives(k, d, sd);
+    result.residual = -w * p * dd.gradient;
+    const Eigen::MatrixXd K =
+        w * eps_n * dd.gradient * dd.gradient.transpose() - w * p * dd.hessian;
+    result.tangent = 0.5 * (K + K.transpose());
+    result.pressure = p;
+    result.closed = true;
+    return result;
+  }
   if (k.gap > touch) return result;
   const detail::ProjectionDerivatives d = detail::projection_derivatives(k, who);
   const double scale = w * eps_n;
@@ -148,26 +231,32 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
 }
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
-                               const NodeCoordinates& master, double w, double eps_n) {
+                               const NodeCoordinates& master, double w, double eps_n,
+                               double lambda) {
   check_parameters(w, eps_n, "node_to_surface");
   if (weights.size() != slave.cols() || !slave.allFinite() || !weights.allFinite())
     throw std::invalid_argument(
         "node_to_surface: slave coordinates and weights must be finite and as many");
   return node_to_surface(slave, weights, master, project_to_facet(master, slave * weights), w,
-                         eps_n);
+                         eps_n, 0.0, lambda);
 }
 
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                               const NodeCoordinates& master, double w, double eps_n,
-                              double touch) {
+                              double touch, double lambda) {
   constexpr const char* who = "node_to_surface_energy";
   check_parameters(w, eps_n, who);
+  check_multiplier(lambda, who);
   if (weights.size() != slave.cols() || !slave.allFinite() || !weights.allFinite())
     throw std::invalid_argument(std::string(who) +
                                 ": slave coordinates and weights must be finite and as many");
   const FacetProjection p = project_to_facet(master, slave * weights);
   const detail::SurfaceKinematics k = detail::surface_kinematics(slave, weights, master, p, who);
   if (!(touch >= 0)) throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
+  if (lambda > 0) {
+    const double p = std::max(0.0, lambda - eps_n * signed_distance(k).value);
+    return 0.5 * w * p * p / eps_n;
+  }
   if (k.gap > touch) return 0.0;
   return 0.5 * w * eps_n * k.r.squaredNorm();
 }

@@ -46,8 +46,10 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
                                  const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
-                                 double mu) {
+                                 double mu, double lambda) {
   check_parameters(w, eps_n, eps_t, mu);
+  require(std::isfinite(lambda) && lambda >= 0,
+          "the multiplier must be finite and >= 0, got " + std::to_string(lambda));
   check_history(old_master, xi_old, t_old);
   const detail::SurfaceKinematics k =
       detail::surface_kinematics(slave, weights, master, projection, who);
@@ -65,12 +67,13 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                     projection.xi,
                     projection.feature,
                     projection.local_index};
-  if (k.gap > 0) return f;
+  // Augmented (λ_N > 0): p_N = λ_N − ε_N g, open unless p_N > 0; dp_N = −ε_N dg as the penalty.
+  if (lambda > 0 ? !(lambda - eps_n * k.gap > 0) : k.gap > 0) return f;
 
   const Eigen::Vector3d& n = k.normal;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d P_T = I - n * n.transpose();
-  const double p_n = eps_n * std::max(0.0, -k.gap);
+  const double p_n = lambda > 0 ? lambda - eps_n * k.gap : eps_n * std::max(0.0, -k.gap);
   const Eigen::VectorXd N_old = facet_shape_functions(no, xi_old);
   const Eigen::Vector3d x_old = old_master * N_old;
   const Eigen::Vector3d v = t_old + eps_t * (k.x_s - x_old);
@@ -128,12 +131,12 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const NodeCoordinates& old_master,
                                  const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old,
-                                 double w, double eps_n, double eps_t, double mu) {
+                                 double w, double eps_n, double eps_t, double mu, double lambda) {
   check_parameters(w, eps_n, eps_t, mu);
   require(weights.size() == slave.cols() && slave.allFinite() && weights.allFinite(),
           "slave coordinates and weights must be finite and as many");
   return surface_friction(slave, weights, master, project_to_facet(master, slave * weights),
-                          old_master, xi_old, t_old, w, eps_n, eps_t, mu);
+                          old_master, xi_old, t_old, w, eps_n, eps_t, mu, lambda);
 }
 
 }  // namespace hypercontact

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <hypercontact/facet_projection.hpp>
 #include <hypercontact/node_to_surface.hpp>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -470,6 +471,174 @@ TEST(ClosestFacet, TrianglesAndBadInput) {
     ADD_FAILURE() << "a degenerate candidate must throw";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("candidate facet 1"), std::string::npos) << e.what();
+  }
+}
+
+// --- Augmented Lagrangian: multiplier λ_N > 0, p_N = ⟨λ_N − ε_N ĝ⟩ ------------------------------
+
+/// An element with a multiplier: W = w ⟨λ_N − ε_N ĝ⟩² / (2 ε_N), R against FD of W, K against FD
+/// of R.
+struct AugmentedElement {
+  NodeCoordinates slave;
+  Eigen::VectorXd weights;
+  NodeCoordinates master;
+  double lambda;
+
+  Eigen::VectorXd x() const { return stack({slave, master}); }
+  double energy(const Eigen::VectorXd& y) const {
+    const auto s = unstack(y, {slave, master});
+    return node_to_surface_energy(s[0], weights, s[1], w, eps_n, 0.0, lambda);
+  }
+  Eigen::VectorXd residual(const Eigen::VectorXd& y) const {
+    const auto s = unstack(y, {slave, master});
+    return node_to_surface(s[0], weights, s[1], w, eps_n, lambda).residual;
+  }
+  SurfaceContact evaluate() const { return node_to_surface(slave, weights, master, w, eps_n, lambda); }
+};
+
+/// The signed distance ĝ of the tests' own: g on the face, sign(g) |r| off it.
+double signed_distance(const SurfaceContact& c, const Eigen::Vector3d& x_s,
+                       const NodeCoordinates& m) {
+  if (c.feature == Feature::Face) return c.gap;
+  const double d = (x_s - surface_point(m, c.xi)).norm();
+  return c.gap <= 0 ? -d : d;
+}
+
+/// Active (λ_N − ε_N ĝ > 0) on the expected feature: p_N, exact R and K, symmetric K, and the
+/// force of magnitude w p_N along ∇ĝ's direction (on the face: −w p_N n on the slave).
+SurfaceContact expect_augmented(const AugmentedElement& e, Feature feature) {
+  const SurfaceContact c = e.evaluate();
+  EXPECT_EQ(c.feature, feature);
+  EXPECT_TRUE(c.closed);
+  const double g_hat = signed_distance(c, e.slave * e.weights, e.master);
+  EXPECT_NEAR(c.pressure, e.lambda - eps_n * g_hat, 1e-12 * e.lambda);
+  EXPECT_GT(c.pressure, 0);
+  EXPECT_TRUE(c.residual.allFinite() && c.tangent.allFinite());
+  const Eigen::VectorXd x = e.x();
+  const Eigen::VectorXd dW =
+      fd_gradient_stacked([&](const Eigen::VectorXd& y) { return e.energy(y); }, x);
+  const Eigen::MatrixXd dR =
+      fd_jacobian_stacked([&](const Eigen::VectorXd& y) { return e.residual(y); }, x);
+  EXPECT_LE(relative_error(dW, c.residual), 1e-6);
+  EXPECT_LE(relative_error(dR, c.tangent), 1e-6);
+  EXPECT_EQ(c.tangent, c.tangent.transpose());
+  Eigen::Vector3d slave_force = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < e.slave.cols(); ++i) slave_force += c.residual.segment<3>(3 * i);
+  EXPECT_NEAR(slave_force.norm(), w * c.pressure, 1e-10 * w * c.pressure);
+  if (feature == Feature::Face)
+    EXPECT_LE((slave_force + w * c.pressure * c.normal).norm(), 1e-10 * w * c.pressure);
+  return c;
+}
+
+void expect_open(const AugmentedElement& e) {
+  const SurfaceContact c = e.evaluate();
+  EXPECT_FALSE(c.closed);
+  EXPECT_EQ(c.pressure, 0.0);
+  EXPECT_TRUE(c.residual.isZero(0.0));
+  EXPECT_TRUE(c.tangent.isZero(0.0));
+  EXPECT_EQ(e.energy(e.x()), 0.0);
+}
+
+TEST(NodeToSurfaceAugmented, FaceClosedTouchingPositiveGapAndOpen) {
+  // Warped quad: the curvature terms (n·x_,12 ≠ 0) are scaled by p_N, not by ε_N ⟨−g⟩.
+  const Eigen::Vector2d xi(0.3, -0.2);
+  const double lambda = 10.0;  // λ_N/ε_N = 0.04
+  for (double gap : {-0.05, 0.0, 0.02, 0.039}) {
+    SCOPED_TRACE("gap = " + std::to_string(gap));
+    const AugmentedElement e{single(point_at(warped_quad, xi, gap)), one_node, warped_quad, lambda};
+    const SurfaceContact c = expect_augmented(e, Feature::Face);
+    EXPECT_NEAR(c.gap, gap, 1e-12);
+  }
+  // λ_N − ε_N g < 0: open although the penalty alone would be too.
+  expect_open({single(point_at(warped_quad, xi, 0.041)), one_node, warped_quad, lambda});
+  expect_open({single(point_at(warped_quad, xi, 0.3)), one_node, warped_quad, lambda});
+  // The geometric term is there: at g > 0 the penalty tangent's curvature part has the wrong
+  // sign and size; K − w ε_N ∇g ∇gᵀ is −w p_N ∇²g ≠ 0.
+  const AugmentedElement e{single(point_at(warped_quad, xi, 0.02)), one_node, warped_quad, lambda};
+  const SurfaceContact c = e.evaluate();
+  const Eigen::VectorXd grad = -c.residual / (w * c.pressure);
+  EXPECT_GT((c.tangent - w * eps_n * grad * grad.transpose()).norm(), 1e-3 * c.tangent.norm());
+}
+
+TEST(NodeToSurfaceAugmented, EdgeAndVertexBelowAndAbove) {
+  const int k = 1;
+  const Eigen::Vector2d xi_edge(1.0, -0.2);
+  const Eigen::Vector3d out_e = edge_outward(warped_quad, k, xi_edge);
+  const Eigen::Vector3d n_e = facet_normal(warped_quad, xi_edge);
+  const Eigen::Vector2d xi_v = facet_vertex_xi(4, 2);
+  const Eigen::Vector3d out_v =
+      (edge_outward(warped_quad, 1, xi_v) + edge_outward(warped_quad, 2, xi_v)).normalized();
+  const Eigen::Vector3d n_v = facet_normal(warped_quad, xi_v);
+  const double lambda = 20.0;  // λ_N/ε_N = 0.08
+  struct Case {
+    Eigen::Vector3d x;
+    Feature feature;
+    bool active;
+  };
+  const Eigen::Vector3d edge_point = surface_point(warped_quad, xi_edge);
+  const Eigen::Vector3d vertex = warped_quad.col(2);
+  for (const Case& c : {
+           Case{edge_point + 0.15 * out_e - 0.1 * n_e, Feature::Edge, true},     // g < 0
+           Case{edge_point + 0.03 * out_e + 0.05 * n_e, Feature::Edge, true},    // 0 < |r| < λ/ε
+           Case{edge_point + 0.06 * out_e + 0.06 * n_e, Feature::Edge, false},   // |r| > λ/ε
+           Case{vertex + 0.1 * out_v - 0.12 * n_v, Feature::Vertex, true},       // g < 0
+           Case{vertex + 0.03 * out_v + 0.04 * n_v, Feature::Vertex, true},      // 0 < |r| < λ/ε
+           Case{vertex + 0.07 * out_v + 0.05 * n_v, Feature::Vertex, false},     // |r| > λ/ε
+       }) {
+    SCOPED_TRACE("feature " + std::to_string(static_cast<int>(c.feature)) + ", active " +
+                 std::to_string(c.active));
+    const AugmentedElement e{single(c.x), one_node, warped_quad, lambda};
+    if (c.active) {
+      const SurfaceContact r = expect_augmented(e, c.feature);
+      // Off the face the force acts along r: on the slave w p_N s r/|r| with the sign of −ĝ.
+      const Eigen::Vector3d rv = c.x - surface_point(warped_quad, r.xi);
+      const double s = r.gap <= 0 ? -1.0 : 1.0;
+      EXPECT_LE((r.residual.head<3>() + w * r.pressure * s * rv.normalized()).norm(),
+                1e-10 * w * r.pressure);
+    } else {
+      EXPECT_EQ(e.evaluate().feature, c.feature);
+      expect_open(e);
+    }
+  }
+}
+
+TEST(NodeToSurfaceAugmented, GaussPointAndTriangle) {
+  const double g = 1 / std::sqrt(3.0);
+  const Eigen::VectorXd M = facet_shape_functions(4, Eigen::Vector2d(-g, g));
+  NodeCoordinates slave(3, 4);
+  slave << point_at(warped_quad, {-0.5, -0.4}, 0.01), point_at(warped_quad, {0.4, -0.6}, -0.02),
+      point_at(warped_quad, {0.5, 0.3}, 0.03), point_at(warped_quad, {-0.6, 0.5}, 0.02);
+  const SurfaceContact c = expect_augmented({slave, M, warped_quad, 5.0}, Feature::Face);
+  EXPECT_GT(c.gap, 0);  // active at a positive gap
+  expect_augmented({single(point_at(triangle, {0.3, 0.25}, 0.01)), one_node, triangle, 5.0},
+                   Feature::Face);
+  expect_augmented({single(point_at(triangle, {0.3, 0.25}, -0.04)), one_node, triangle, 5.0},
+                   Feature::Face);
+}
+
+TEST(NodeToSurfaceAugmented, ZeroMultiplierIsThePenaltyAndBadMultipliersThrow) {
+  const Eigen::Vector2d xi(0.3, -0.2);
+  for (double gap : {-0.05, 0.02}) {
+    const NodeCoordinates s = single(point_at(warped_quad, xi, gap));
+    const SurfaceContact a = node_to_surface(s, one_node, warped_quad, w, eps_n);
+    const SurfaceContact b = node_to_surface(s, one_node, warped_quad, w, eps_n, 0.0);
+    EXPECT_EQ(a.residual, b.residual);
+    EXPECT_EQ(a.tangent, b.tangent);
+    EXPECT_EQ(a.pressure, b.pressure);
+    EXPECT_EQ(a.closed, b.closed);
+  }
+  // At g < 0 the augmented element with λ_N is the penalty element plus −w λ_N ∇g
+  // (∇g = −R_penalty / (w p_penalty) on the face).
+  const NodeCoordinates s = single(point_at(warped_quad, xi, -0.05));
+  const SurfaceContact pen = node_to_surface(s, one_node, warped_quad, w, eps_n);
+  const SurfaceContact al = node_to_surface(s, one_node, warped_quad, w, eps_n, 3.0);
+  EXPECT_LE((al.residual - pen.residual - 3.0 * w * pen.residual / (w * pen.pressure)).norm(),
+            1e-10 * al.residual.norm());
+  EXPECT_NEAR(al.pressure, pen.pressure + 3.0, 1e-10);
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    EXPECT_THROW(node_to_surface(s, one_node, warped_quad, w, eps_n, bad), std::invalid_argument);
+    EXPECT_THROW(node_to_surface_energy(s, one_node, warped_quad, w, eps_n, 0.0, bad),
+                 std::invalid_argument);
   }
 }
 

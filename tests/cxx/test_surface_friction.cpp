@@ -65,14 +65,16 @@ struct Element {
   Eigen::Vector2d xi_old;
   Eigen::Vector3d t_old;
   double mu_ = mu;
+  double lambda = 0.0;  ///< augmented Lagrangian multiplier λ_N (0: penalty)
 
   Eigen::VectorXd x() const { return stack({slave, master, old}); }
   SurfaceFriction evaluate() const {
-    return surface_friction(slave, weights, master, old, xi_old, t_old, w, eps_n, eps_t, mu_);
+    return surface_friction(slave, weights, master, old, xi_old, t_old, w, eps_n, eps_t, mu_,
+                            lambda);
   }
   Eigen::VectorXd residual(const Eigen::VectorXd& y) const {
     const auto s = unstack(y, {slave, master, old});
-    return surface_friction(s[0], weights, s[1], s[2], xi_old, t_old, w, eps_n, eps_t, mu_)
+    return surface_friction(s[0], weights, s[1], s[2], xi_old, t_old, w, eps_n, eps_t, mu_, lambda)
         .residual;
   }
   double fd_error(const Eigen::MatrixXd& tangent) const {
@@ -428,6 +430,88 @@ TEST(SurfaceFriction, RejectsBadInput) {
                                 Eigen::Vector3d::Zero(), w, eps_n, eps_t, mu),
                std::invalid_argument);
   EXPECT_NO_THROW(call(0.0, eps_n, eps_t, mu));
+}
+
+// --- Augmented Lagrangian: the cone radius is μ ⟨λ_N − ε_N g⟩ -----------------------------------
+
+TEST(SurfaceFrictionAugmented, StickAndSlipOnTheFaceBelowAndAbove) {
+  const Eigen::Vector2d xi(0.3, 0.2);
+  const double lambda = 10.0;  // λ_N/ε_N = 0.04
+  for (const NodeCoordinates& m : {warped_a, triangle}) {
+    for (double gap : {-0.03, 0.0, 0.02}) {
+      SCOPED_TRACE("gap = " + std::to_string(gap));
+      Element e{single(point_at(m, xi, gap)), one_node, m, m, xi - Eigen::Vector2d(0.05, -0.03),
+                Eigen::Vector3d::Zero()};
+      e.lambda = lambda;
+      const double p = lambda - eps_n * gap;
+      const SurfaceFriction slip = expect_exact(e, StickSlip::Slip, Feature::Face);
+      EXPECT_NEAR(slip.pressure, p, 1e-10 * p);
+      EXPECT_NEAR(slip.traction.norm(), mu * p, 1e-10 * p);
+      e.t_old = tuned_t_old(e, Eigen::Vector3d(0.3, -1, 0.5), 0.6 * mu * p);
+      const SurfaceFriction stick = expect_exact(e, StickSlip::Stick, Feature::Face);
+      EXPECT_NEAR(stick.traction.norm(), 0.6 * mu * p, 1e-10 * p);
+    }
+  }
+}
+
+TEST(SurfaceFrictionAugmented, BothSidesOfTheStickSlipTransitionAtAPositiveGap) {
+  const Eigen::Vector2d xi(0.3, 0.2);
+  const double gap = 0.01, lambda = 6.0, radius = mu * (lambda - eps_n * gap);
+  Element e{single(point_at(warped_a, xi, gap)), one_node, warped_a, warped_a,
+            xi - Eigen::Vector2d(0.003, -0.002), Eigen::Vector3d::Zero()};
+  e.lambda = lambda;
+  for (const auto& [factor, state] :
+       {std::pair{1 - 1e-3, StickSlip::Stick}, std::pair{1 + 1e-3, StickSlip::Slip}}) {
+    e.t_old = tuned_t_old(e, Eigen::Vector3d(0.3, -1, 0.5), factor * radius);
+    const SurfaceFriction f = expect_exact(e, state, Feature::Face);
+    EXPECT_NEAR(f.traction.norm(), std::min(factor, 1.0) * radius, 1e-10 * radius);
+  }
+}
+
+TEST(SurfaceFrictionAugmented, EdgeAndVertex) {
+  const Eigen::Vector2d xi_edge(1.0, -0.2);
+  const Eigen::Vector3d out_e = edge_outward(warped_a, 1, xi_edge), n_e = facet_normal(warped_a, xi_edge);
+  const Eigen::Vector2d xi_v = facet_vertex_xi(4, 2);
+  const Eigen::Vector3d out_v =
+      (edge_outward(warped_a, 1, xi_v) + edge_outward(warped_a, 2, xi_v)).normalized();
+  const Eigen::Vector3d n_v = facet_normal(warped_a, xi_v);
+  const double lambda = 20.0;
+  const Eigen::Vector3d edge_point = surface_point(warped_a, xi_edge);
+  for (const auto& [x, feature] :
+       {std::pair{(edge_point + 0.15 * out_e - 0.1 * n_e).eval(), Feature::Edge},
+        std::pair{(edge_point + 0.03 * out_e + 0.05 * n_e).eval(), Feature::Edge},
+        std::pair{(warped_a.col(2) + 0.1 * out_v - 0.12 * n_v).eval(), Feature::Vertex},
+        std::pair{(warped_a.col(2) + 0.03 * out_v + 0.04 * n_v).eval(), Feature::Vertex}}) {
+    Element e{single(x), one_node, warped_a, warped_a, {0.8, -0.1}, Eigen::Vector3d::Zero()};
+    e.lambda = lambda;
+    const SurfaceFriction slip = expect_exact(e, StickSlip::Slip, feature);
+    EXPECT_NEAR(slip.pressure, lambda - eps_n * slip.gap, 1e-10 * lambda);
+    e.t_old = tuned_t_old(e, Eigen::Vector3d(1, 0.2, -0.3), 0.5 * mu * slip.pressure);
+    expect_exact(e, StickSlip::Stick, feature);
+  }
+}
+
+TEST(SurfaceFrictionAugmented, OpenWhereTheAugmentedPressureVanishesZeroIsPenalty) {
+  const Eigen::Vector2d xi(0.3, -0.2);
+  Element e{single(point_at(warped_a, xi, 0.05)), one_node, warped_a, warped_a, xi,
+            Eigen::Vector3d(0.5, 0.1, 0)};
+  e.lambda = 10.0;  // λ_N − ε_N g = −2.5 < 0
+  const SurfaceFriction open = e.evaluate();
+  EXPECT_EQ(open.state, StickSlip::Open);
+  EXPECT_TRUE(open.residual.isZero(0.0) && open.tangent.isZero(0.0));
+  EXPECT_EQ(open.pressure, 0.0);
+  // λ_N = 0 is the penalty call, bit for bit.
+  Element pen{single(point_at(warped_a, xi, -0.03)), one_node, warped_a, warped_a,
+              xi - Eigen::Vector2d(0.05, -0.03), Eigen::Vector3d::Zero()};
+  const SurfaceFriction a = pen.evaluate();
+  const SurfaceFriction b = surface_friction(pen.slave, one_node, warped_a, warped_a, pen.xi_old,
+                                             pen.t_old, w, eps_n, eps_t, mu);
+  EXPECT_EQ(a.residual, b.residual);
+  EXPECT_EQ(a.tangent, b.tangent);
+  EXPECT_EQ(a.traction, b.traction);
+  EXPECT_THROW(surface_friction(pen.slave, one_node, warped_a, warped_a, pen.xi_old, pen.t_old, w,
+                                eps_n, eps_t, mu, -1.0),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -27,10 +27,10 @@ struct SurfaceContactState {
   std::vector<std::int32_t> status;   ///< PairingStatus
   std::vector<double> xi;             ///< ξ* on the facet, 2 per point
   std::vector<double> gap;            ///< signed gap g (> 0 open; 0 when not paired)
-  std::vector<double> pressure;       ///< p_N = ε_N ⟨−g⟩
+  std::vector<double> pressure;       ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
   std::vector<double> normal;         ///< unit normal used for the sign of g, 3 per point
   Eigen::Vector3d force;              ///< force of the master on the slave body, −Σ r (slave part)
-  std::int32_t num_closed;            ///< points with g ≤ 0
+  std::int32_t num_closed;            ///< points with g ≤ 0 (augmented: with p_N > 0)
 };
 
 /// Geometry and numbering of one slave surface against one master surface.
@@ -56,6 +56,10 @@ struct SurfaceContactInput {
   std::span<const std::int32_t> candidates;
   std::span<const std::int32_t> dofs;
   double eps_n;
+  /// Augmented Lagrangian: λ_N ≥ 0 per slave point (np entries), or empty (all zero: penalty).
+  /// A point with λ_N > 0 is active where ⟨λ_N − ε_N ĝ⟩ > 0 (node_to_surface), gaps up to
+  /// λ_N/ε_N included; a point with λ_N = 0 is evaluated exactly as without multipliers.
+  std::span<const double> multipliers = {};
 };
 
 /// Evaluates every slave point: closest point over its candidate facets (ties: face before edge
@@ -63,7 +67,8 @@ struct SurfaceContactInput {
 /// the sum of the two facets' centroid normals (inner edge) or of all facets' centroid normals
 /// around the node (inner vertex); a point whose closest point is on the master surface's
 /// boundary is OffSurface (open) unless it lies within the facet's extent
-/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_p − x_M). A closed point (g ≤ 0) adds the element residual
+/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_p − x_M). A closed point (g ≤ 0; with a multiplier λ_N > 0:
+/// ⟨λ_N − ε_N ĝ⟩ > 0, see node_to_surface) adds the element residual
 /// and tangent of node_to_surface (energy ½ w ε_N g² with all curvature terms) into b and A
 /// (either may be null) with VecSetValues / MatSetValues, global indices, ADD_VALUES; the caller
 /// assembles them. Throws std::invalid_argument on inconsistent sizes or indices out of range,

@@ -17,12 +17,12 @@ struct SurfaceContact {
   Eigen::VectorXd residual;
   Eigen::MatrixXd tangent;  ///< K = ∂R/∂x, same ordering, symmetric
   double gap;               ///< g = (x_s − x_M(ξ*)) · n
-  double pressure;          ///< p_N = ε_N ⟨−g⟩
+  double pressure;          ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
   Eigen::Vector3d normal;   ///< n: unit outward facet normal at ξ*
   Eigen::Vector2d xi;       ///< ξ*
   Feature feature;          ///< as the projection
   int local_index;          ///< as the projection
-  bool closed;              ///< g ≤ 0
+  bool closed;              ///< g ≤ 0 (augmented: p_N > 0): the element is active
 };
 
 /// Contact element of a slave point x_s = Σ_i M_i x_i (i over the ns columns of `slave`; one
@@ -56,19 +56,35 @@ struct SurfaceContact {
 /// `touch` ≥ 0 widens "closed" to g ≤ touch: a caller passes a rounding-level length (e.g.
 /// 1e-10 × the facet size) so that surfaces meshed exactly in touch (g = ±1e-17) are closed and
 /// the tangent holds the contact stiffness from the first iteration.
+///
+/// Augmented Lagrangian: `lambda` = λ_N ≥ 0, the slave point's multiplier (a pressure, held
+/// fixed). λ_N = 0 is the penalty element above, operation for operation. λ_N > 0: with the
+/// signed distance ĝ (= g on the face; off it ĝ = s |r|, s = −1 if g ≤ 0 else +1, so that the
+/// penalty energy is ½ w ε_N ĝ²) and p_N = λ_N − ε_N ĝ,
+///   energy   W = w ⟨p_N⟩² / (2 ε_N)  (= ½ w ε_N ĝ² at λ_N = 0, ĝ ≤ 0),
+///   active   p_N > 0, which includes gaps 0 < ĝ < λ_N/ε_N (touch is not used),
+///   residual R = −w p_N ∇ĝ,  ∇ĝ = Pᵀ n (face), s Pᵀ r/|r| (edge, vertex),
+///   tangent  K = w ε_N ∇ĝ ∇ĝᵀ − w p_N ∇²ĝ: the material part keeps ε_N, the geometric
+///            (curvature) part −∇²ĝ is scaled by p_N where the penalty has ε_N ⟨−g⟩;
+///            ∇²ĝ in closed form on the face (no division by g: exact at g = 0) and
+///            s (∇²φ* − Pᵀ r̂ r̂ᵀ P)/|r| off it (∇²φ* = PᵀP + B dξ*/dx as above),
+///   pressure p_N (reported as such; open: 0).
+/// Off the face with r = 0 (the point exactly on an edge or vertex of the facet) ∇ĝ = Pᵀ n and
+/// ∇²ĝ = 0 (ĝ is not differentiable there). Throws std::invalid_argument if λ_N < 0 or not finite.
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n, double touch = 0.0);
+                               double w, double eps_n, double touch = 0.0, double lambda = 0.0);
 
 /// The same, projecting x_s onto the facet first (project_to_facet).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
-                               const NodeCoordinates& master, double w, double eps_n);
+                               const NodeCoordinates& master, double w, double eps_n,
+                               double lambda = 0.0);
 
 /// The element energy W defined above (projecting x_s onto the facet first); closed for
-/// g ≤ touch as node_to_surface.
+/// g ≤ touch as node_to_surface; with λ_N > 0 the augmented W = w ⟨λ_N − ε_N ĝ⟩² / (2 ε_N).
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                               const NodeCoordinates& master, double w, double eps_n,
-                              double touch = 0.0);
+                              double touch = 0.0, double lambda = 0.0);
 
 /// The closest of several candidate facets to a slave point (narrow phase).
 struct ClosestFacet {

@@ -22,7 +22,7 @@ struct SurfaceFriction {
   double dissipation;              ///< D = μ p_N |Δs| w = w t·Δs ≥ 0
   StickSlip state;
   double gap;              ///< g = (x_s − x_M(ξ*))·n
-  double pressure;         ///< p_N = ε_N ⟨−g⟩
+  double pressure;         ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N g⟩)
   Eigen::Vector3d normal;  ///< n at ξ*
   Eigen::Vector2d xi;      ///< ξ*: with the facet, the next ξ_old
   Feature feature;
@@ -62,19 +62,25 @@ struct SurfaceFriction {
 ///   dR = w ([Pᵀ; 0] dt + [P_,αᵀ t; 0] dξ*^α).
 /// Open (g > 0): everything zero, state Open; the caller then stores t_old = 0.
 /// μ = 0: R = 0, K = 0; state Open if g > 0, else Slip with t = 0 and Δs = t_trial/ε_T.
-/// Throws std::invalid_argument if w < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, sizes are inconsistent, any
-/// input is not finite, the projection is inconsistent or a facet is degenerate;
-/// std::runtime_error as node_to_surface at a centre of curvature. Never returns NaN.
+/// Augmented Lagrangian: `lambda` = λ_N ≥ 0, the slave point's multiplier (held fixed). λ_N = 0
+/// is the penalty above, operation for operation; λ_N > 0: the Coulomb cone uses the augmented
+/// pressure p_N = λ_N − ε_N g, the point is open unless p_N > 0 (so a small positive gap can
+/// stick or slip), dp_N = −ε_N dg as above (node_to_surface, given λ_N, is active wherever this
+/// is: off the face its ĝ is ≥ g when g > 0).
+/// Throws std::invalid_argument if w < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, λ_N < 0, sizes are
+/// inconsistent, any input is not finite, the projection is inconsistent or a facet is
+/// degenerate; std::runtime_error as node_to_surface at a centre of curvature. Never returns NaN.
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
                                  const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
-                                 double mu);
+                                 double mu, double lambda = 0.0);
 
 /// The same, projecting x_s onto the current facet first (project_to_facet).
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const NodeCoordinates& old_master,
                                  const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old,
-                                 double w, double eps_n, double eps_t, double mu);
+                                 double w, double eps_n, double eps_t, double mu,
+                                 double lambda = 0.0);
 
 }  // namespace hypercontact
