@@ -30,12 +30,29 @@ class FrictionAccounting:
     stick/slip counts of the last converged state (``self.committed``)."""
 
     def accumulate(self, state):
-        """Add a converged step's dissipation and slip (state: the kernel's)."""
+        """Add a converged step's dissipation and slip (state: the kernel's),
+        and count the points whose status flipped between stick and slip
+        since the last converged step (``flips_step``, all ranks)."""
+        status = np.asarray(state.state).astype(np.int8)
+        old = self.status_committed
+        flipped = ((old == STICK) & (status == SLIP)) | ((old == SLIP) & (status == STICK))
+        self.flips_step = int(self.comm.allreduce(int(np.count_nonzero(flipped)), op=MPI.SUM))
+        self.status_committed = status
         dissipation = np.asarray(state.dissipation)
         self.dissipation_step = self.comm.allreduce(float(np.sum(dissipation)), op=MPI.SUM)
         self.dissipation += self.dissipation_step
         self.dissipation_nodes = self.dissipation_nodes + dissipation
         self.slip_accumulated = self.slip_accumulated + np.linalg.norm(np.asarray(state.slip_increment), axis=1)
+
+    def stick_slip_signature(self):
+        """(sticking, slipping, checksums of the sticking and of the slipping
+        points) at the last residual evaluation, summed over ranks: a point
+        that changes between open, stick and slip changes it."""
+        status = self.iterate_status()
+        ids = self.point_ids()
+        stick, slip = ids[status == STICK], ids[status == SLIP]
+        local = np.array([len(stick), len(slip), stick.sum(), slip.sum(), (slip * slip).sum()], dtype=np.int64)
+        return tuple(self.comm.allreduce(local, op=MPI.SUM).tolist())
 
     def stick_slip_counts(self):
         """(sticking, slipping) slave points at the last converged step, all ranks."""
@@ -63,6 +80,15 @@ class FrictionalRigidContact(FrictionAccounting, RigidContact):
         self.dissipation_nodes = np.zeros(len(self.nodes))  # per node: Σ D (N mm)
         self.last = None  # friction state at the last residual evaluation
         self.committed = None  # friction state of the last converged step
+        self.status_committed = np.zeros(len(self.nodes), np.int8)  # per node, the last converged step's
+        self.flips_step = 0  # stick <-> slip flips of the last converged step, all ranks
+
+    def iterate_status(self):
+        """Per node: 0 open, 1 stick, 2 slip at the last residual evaluation."""
+        return np.asarray(self.last.state)
+
+    def point_ids(self):
+        return self.global_nodes[self.nodes]
 
     def _xi_now(self):
         """ξ carried with the obstacle's translation since the last commit."""
@@ -128,11 +154,12 @@ class FrictionalRigidContact(FrictionAccounting, RigidContact):
 
     def history_arrays(self):
         """This rank's per-node history beyond ξ and t, for the checkpoint."""
-        return {"slip": self.slip_accumulated, "work": self.dissipation_nodes}
+        return {"slip": self.slip_accumulated, "work": self.dissipation_nodes, "status": self.status_committed}
 
     def restore_history_arrays(self, arrays):
         """Inverse of :meth:`history_arrays` (a checkpoint without them, from
         an older version, restarts the accumulated per-node values at 0)."""
         n = len(self.nodes)
+        self.status_committed = np.array(arrays.get("status", np.zeros(n)), dtype=np.int8)
         self.slip_accumulated = np.array(arrays.get("slip", np.zeros(n)), dtype=float)
         self.dissipation_nodes = np.array(arrays.get("work", np.zeros(n)), dtype=float)

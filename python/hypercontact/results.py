@@ -169,8 +169,11 @@ class ResultsWriter:
             if frictional(c):  # frictional dissipation (N mm) of the step and accumulated, stick/slip nodes
                 self.columns += [f"{c.name}_dissipation_step", f"{c.name}_dissipation",
                                  f"{c.name}_stick_nodes", f"{c.name}_slip_nodes"]
+                self.columns += [f"{c.name}_stick_slip_flips"]  # points that flipped stick <-> slip
         if any(frictional(c) for c in contacts):
             self.columns += ["dissipation_step", "dissipation"]  # over all frictional contacts
+            # Newton iterations in which a frictional contact's stick/slip set changed; flips summed
+            self.columns += ["stick_slip_changes", "stick_slip_flips"]
         for name in probes:
             self.columns += [f"{name}_u{a}" for a in "xyz"]
         self.pressures = {f"pressure_{p['surface']}": p["value"] for p in scene["pressure"]}
@@ -180,11 +183,11 @@ class ResultsWriter:
             self._csv = csv.writer(self._csv_file)
             self._csv.writerow(self.columns)
             for step in self.steps:
-                self._csv.writerow([step[k] for k in self.columns])
+                self._csv.writerow([step.get(k, "") for k in self.columns])
             self._csv_file.flush()
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
-                   active_set_changes=0):
+                   active_set_changes=0, stick_slip_changes=0):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         fields = self._fields(load_factor) if self.xdmf is not None and self._frames_on_disk == 0 else None
         row = {"step": len(self.steps) + 1, "load_factor": load_factor,
@@ -200,9 +203,12 @@ class ResultsWriter:
                 row[f"{c.name}_dissipation_step"] = self.factor * c.dissipation_step
                 row[f"{c.name}_dissipation"] = self.factor * c.dissipation
                 row[f"{c.name}_stick_nodes"], row[f"{c.name}_slip_nodes"] = c.stick_slip_counts()
+                row[f"{c.name}_stick_slip_flips"] = c.flips_step
         if any(frictional(c) for c in self.contacts):
             row["dissipation_step"] = self.factor * sum(c.dissipation_step for c in self.contacts if frictional(c))
             row["dissipation"] = self.factor * sum(c.dissipation for c in self.contacts if frictional(c))
+            row["stick_slip_changes"] = stick_slip_changes
+            row["stick_slip_flips"] = sum(c.flips_step for c in self.contacts if frictional(c))
         for name, probe in self.probes.items():
             for a, value in zip("xyz", probe.value(self.u)):
                 row[f"{name}_u{a}"] = float(value)

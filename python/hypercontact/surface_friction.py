@@ -48,6 +48,8 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         self.slip_accumulated = np.zeros(n)  # per point: Σ |Δs|
         self.dissipation_nodes = np.zeros(n)  # per point: Σ D
         self.committed = None  # friction state of the last converged step
+        self.status_committed = np.zeros(n, np.int8)  # per point, the last converged step's
+        self.flips_step = 0  # stick <-> slip flips of the last converged step, all ranks
         # History at the reference configuration: where each point is paired before any load.
         self.candidates = self.search(self.X)
         self._store_history(_cpp.evaluate_surface_friction(*self._args_at(self.X)))
@@ -75,6 +77,13 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         return _cpp.evaluate_surface_friction(*self._fargs(u))
 
     friction_state = evaluate
+
+    def iterate_status(self):
+        """Per point: 0 open, 1 stick, 2 slip at the last residual evaluation."""
+        return np.asarray(self.state.state)
+
+    def point_ids(self):
+        return self.global_ids[self.point_nodes[:, 0]].astype(np.int64)  # the slave node of each point
 
     def active_set_signature(self):
         closed = np.flatnonzero(np.asarray(self.state.gap) <= 0.0)
@@ -129,10 +138,12 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
 
     def history_arrays(self):
         """This rank's per-point history beyond ξ and t, for the checkpoint."""
-        return {"facet": self.old_facet, "slip": self.slip_accumulated, "work": self.dissipation_nodes}
+        return {"facet": self.old_facet, "slip": self.slip_accumulated, "work": self.dissipation_nodes,
+                "status": self.status_committed}
 
     def restore_history_arrays(self, arrays):
         n = len(self.point_area)
+        self.status_committed = np.array(arrays.get("status", np.zeros(n)), dtype=np.int8)
         self.old_facet = np.array(arrays.get("facet", np.full(n, -1)), dtype=np.int32)
         self.slip_accumulated = np.array(arrays.get("slip", np.zeros(n)), dtype=float)
         self.dissipation_nodes = np.array(arrays.get("work", np.zeros(n)), dtype=float)
