@@ -163,8 +163,12 @@ def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol
         if not np.isfinite(rnorm):
             raise ContinuationFailure(f"residual is not finite at iteration {it}")
         norms.append(rnorm)
+        # Relative to the applied load |λ q| (the forces in balance), not to the predictor's
+        # residual: a predictor that pushes contact nodes into an obstacle has a residual of
+        # order ε_N × the overshoot (1e5 × the load on the sphere against a plane), which
+        # would accept an iterate far from equilibrium.
         qnorm = bordered.q.norm() * max(abs(lam + dlam), 1e-300)
-        if it > 0 and rnorm <= max(rtol * max(norms[0], qnorm), atol):
+        if it > 0 and rnorm <= max(rtol * qnorm, atol):
             return Du, dlam, it, norms
         if it == max_it:
             break

@@ -9,7 +9,8 @@ def assembled_and_fd_jacobians(problem, x, free, h=1e-7):
     b = problem.b.duplicate()
     problem.residual(None, x, b)
     problem.jacobian(None, x, problem.A, problem.A)
-    J = problem.A.convert("dense").getDenseArray().copy()
+    # convert() without a target converts in place: keep the solver's sparse matrix as it is
+    J = problem.A.copy().convert("dense").getDenseArray().copy()
     J_fd = np.zeros_like(J)
     bp, bm = b.duplicate(), b.duplicate()
     for j in free:
