@@ -65,7 +65,10 @@ def test_hertz_reference_error_recomputed_from_the_case_profile(tmp_path):
     row = rows[0]
     assert row["status"] == "completed"
     points = out / "case00" / "hertz_points.csv"
-    F = float(points.read_text().split("F = ")[1].split(",")[0])
+    header = points.read_text().splitlines()[0]
+    F = float(header.split("F = ")[1].split(",")[0])
+    # hertz:delta's approach: the ball's flat top is driven 0.3 mm down onto the block fixed at its base
+    assert float(header.split("delta = ")[1]) == pytest.approx(0.3, rel=1e-9)
     curves = list(csv.DictReader(open(out / "case00" / "curves.csv")))
     assert F == pytest.approx(abs(float(curves[-1]["hertz_fz"])), rel=1e-9)  # whole-sphere force (× 4)
     data = np.loadtxt(points, delimiter=",", skiprows=2)
