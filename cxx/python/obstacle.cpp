@@ -1,4 +1,6 @@
-// Bindings of obstacle.hpp (Feature, ObstacleProjection, RigidPlane, RigidBox, project).
+// Bindings of obstacle.hpp (Feature, ObstacleProjection, RigidPlane, RigidBox, RigidCylinder,
+// project).
+#include <cmath>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
@@ -60,6 +62,27 @@ void declare_obstacle(py::module_& m) {
             .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")());
       });
 
+  py::class_<RigidCylinder>(m, "RigidCylinder",
+                            "Rigid circular cylinder (infinite length); outside is admissible")
+      .def(py::init([](const RealArray& point, const RealArray& axis, double radius) {
+             const Eigen::Vector3d a = as_vector3(axis, "axis");
+             if (!(a.norm() > 0) || !a.allFinite())
+               throw py::value_error("axis: must be a finite non-zero vector");
+             if (!(std::isfinite(radius) && radius > 0))
+               throw py::value_error("radius: must be finite and > 0");
+             return RigidCylinder{as_vector3(point, "point"), a.normalized(), radius};
+           }),
+           py::arg("point"), py::arg("axis"), py::arg("radius"),
+           "RigidCylinder(point, axis, radius); axis is normalised")
+      .def_readonly("point", &RigidCylinder::point)
+      .def_readonly("axis", &RigidCylinder::axis)
+      .def_readonly("radius", &RigidCylinder::radius)
+      .def("__repr__", [](const RigidCylinder& c) {
+        return py::str("RigidCylinder(point={}, axis={}, radius={})")
+            .format(py::cast(c.point).attr("tolist")(), py::cast(c.axis).attr("tolist")(),
+                    c.radius);
+      });
+
   m.def(
       "project",
       [](const Obstacle& obstacle, const RealArray& x) {
@@ -68,7 +91,7 @@ void declare_obstacle(py::module_& m) {
         return project(obstacle, xv);
       },
       py::arg("obstacle"), py::arg("x"),
-      "Closest-point projection of the point x (3,) onto a RigidPlane or RigidBox");
+      "Closest-point projection of the point x (3,) onto a RigidPlane, RigidBox or RigidCylinder");
 }
 
 }  // namespace hypercontact::python

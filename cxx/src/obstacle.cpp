@@ -1,5 +1,6 @@
 #include <hypercontact/obstacle.hpp>
 #include <hypercontact/rigid_box.hpp>
+#include <hypercontact/rigid_cylinder.hpp>
 #include <hypercontact/rigid_plane.hpp>
 
 namespace hypercontact {
@@ -11,6 +12,9 @@ struct Projector {
     return project_to_plane(plane, x);
   }
   ObstacleProjection operator()(const RigidBox& box) const { return project_to_box(box, x); }
+  ObstacleProjection operator()(const RigidCylinder& cylinder) const {
+    return project_to_cylinder(cylinder, x);
+  }
 };
 }  // namespace
 

@@ -36,6 +36,8 @@ def make_obstacle(spec, load_factor):
         return _cpp.RigidPlane(np.asarray(spec["point"]) + shift, np.asarray(spec["normal"]))
     if spec["obstacle"] == "box":
         return _cpp.RigidBox(np.asarray(spec["lo"]) + shift, np.asarray(spec["hi"]) + shift)
+    if spec["obstacle"] == "cylinder":
+        return _cpp.RigidCylinder(np.asarray(spec["point"]) + shift, np.asarray(spec["axis"]), float(spec["radius"]))
     raise ValueError(f"unknown obstacle {spec['obstacle']!r}")
 
 

@@ -182,8 +182,9 @@ SCHEMA = {
     "contact": [{
         "name": Key("string", REQUIRED),
         "surface": Key("string", REQUIRED),
-        "obstacle": Key("string", REQUIRED, (lambda x: x in ("plane", "box", "surface"),
-                                             '"plane", "box" (rigid) or "surface" (a deformable body\'s surface)')),
+        "obstacle": Key("string", REQUIRED, (lambda x: x in ("plane", "box", "cylinder", "surface"),
+                                             '"plane", "box", "cylinder" (rigid) or "surface" (a deformable '
+                                             'body\'s surface)')),
         "master": Key("string", ""),  # a surface name, or several joined by "+"
         "passes": Key("integer", 1, (lambda x: x in (1, 2), "1 (single pass, the paper) or 2 (two-pass)")),
         "integration": Key("string", "nodal", (lambda x: x in ("nodal", "gauss"),
@@ -194,6 +195,9 @@ SCHEMA = {
                                                   "a non-zero vector (length from 1e-100 to 1e+100)")),
         "lo": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "hi": Key("vector", [1.0, 1.0, 1.0], COORDINATES),
+        "axis": Key("vector", [0.0, 1.0, 0.0], (lambda v: 1e-100 <= math.hypot(*v) <= 1e100,
+                                                "a non-zero vector (length from 1e-100 to 1e+100)")),
+        "radius": Key("number", 0.0, NON_NEGATIVE, LENGTH),
         "motion": Key("vector", [0.0, 0.0, 0.0], COORDINATES),
         "eps_n": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,
                                                    "0 (automatic: penalty_factor × M / h) or from 1e-100 to 1e+100")),
@@ -631,6 +635,12 @@ def _check_consistency(scene, base_dir):
         _check_contact_kind(c, f"contact[{i}]", scene)
         if c["obstacle"] == "box" and not all(l < h for l, h in zip(c["lo"], c["hi"])):
             _fail(f"contact[{i}].hi", f"box needs lo < hi in every coordinate, found lo={c['lo']} hi={c['hi']}")
+        if c["obstacle"] == "cylinder" and not c["radius"] > 0:
+            _fail(f"contact[{i}].radius", f"a cylinder needs a radius > 0 (its axis passes through point, along "
+                  f"axis), found {c['radius']}")
+        if c["obstacle"] != "cylinder" and c["radius"] != 0.0:
+            _fail(f"contact[{i}].radius", f"applies to obstacle = \"cylinder\" only (this contact's obstacle is "
+                  f"{c['obstacle']!r})")
         if c["obstacle"] == "box":
             # lo + λ motion < hi + λ motion must still hold in floating point
             reach = max(abs(v + f * m) for f in (0.0, 1.0) for corner in (c["lo"], c["hi"])

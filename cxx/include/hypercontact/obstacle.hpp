@@ -35,10 +35,18 @@ struct RigidBox {
   Eigen::Vector3d hi;
 };
 
-using Obstacle = std::variant<RigidPlane, RigidBox>;
+/// Circular cylinder of infinite length: axis through `point` along the unit vector `axis`,
+/// radius `radius` > 0; the admissible region is outside it (a smooth rigid die).
+struct RigidCylinder {
+  Eigen::Vector3d point;
+  Eigen::Vector3d axis;
+  double radius;
+};
 
-/// Projection of a finite point x onto any obstacle: dispatches to project_to_plane or
-/// project_to_box.
+using Obstacle = std::variant<RigidPlane, RigidBox, RigidCylinder>;
+
+/// Projection of a finite point x onto any obstacle: dispatches to project_to_plane,
+/// project_to_box or project_to_cylinder.
 ObstacleProjection project(const Obstacle& obstacle, const Eigen::Vector3d& x);
 
 }  // namespace hypercontact
