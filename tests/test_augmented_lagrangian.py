@@ -85,8 +85,15 @@ def test_with_friction_the_gap_tolerance_is_reached_and_the_cone_holds(tmp_path)
     assert np.all(pressure[slipping] > 5 * punch.eps_n * TOL)
 
 
-def test_augmented_lagrangian_rejected_where_not_implemented(tmp_path):
-    data = tomllib.loads((ROOT / "scenes" / "blocks.toml").read_text())
-    data["contact"][0].update(enforcement="augmented_lagrangian")
-    with pytest.raises(scene.SceneError, match=r"contact\[0\]\.enforcement"):
+@pytest.mark.parametrize("key, value", [("enforcement", "lagrange"), ("gap_tolerance", -1e-3),
+                                        ("max_augmentations", 0)])
+def test_bad_augmented_lagrangian_values_are_refused(key, value):
+    """Deformable masters accept the augmented Lagrangian (tests/test_augmented_lagrangian_surface.py);
+    bad values of its keys are refused with the key's name, rigid or not."""
+    for name in ("blocks.toml", "punch.toml"):
+        data = tomllib.loads((ROOT / "scenes" / name).read_text())
+        data["contact"][0].update(enforcement="augmented_lagrangian")
         scene.load(data)
+        data["contact"][0][key] = value
+        with pytest.raises(scene.SceneError, match=rf"contact\[0\]\.{key}"):
+            scene.load(data)

@@ -30,6 +30,7 @@ from mpi4py import MPI
 
 from . import _cpp
 from . import _dolfinx as dfx
+from . import penalty
 from .contact import nodal_areas
 
 GAUSS_2X2 = np.array([-1.0, 1.0]) / np.sqrt(3.0)
@@ -183,6 +184,15 @@ class SurfaceContact:
         self.candidates = None  # (offsets, indices) of the current pattern
         self.state = None
         self.repairings = 0
+        # Augmented Lagrangian: one pressure λ_N per slave point of this rank, held fixed in a
+        # Newton solve and updated between solves (Uzawa); committed with the step, restored on a
+        # cut-back. It belongs to the slave point: a new facet or a rebuilt pairing keeps it.
+        self.augmented = spec.get("enforcement", "penalty") == "augmented_lagrangian"
+        self.multipliers = np.zeros(len(self.point_area)) if self.augmented else np.zeros(0)
+        self.multipliers_committed = self.multipliers.copy()
+        if self.augmented and not spec.get("gap_tolerance", 0.0) > 0:
+            # automatic, as for rigid obstacles: 1e-3 of the first element layer's thickness
+            spec["gap_tolerance"] = 1e-3 * min(penalty.layer_thickness(V, facet_tags, t) for t in slave_tags)
 
     def set_load_factor(self, load_factor):
         """The master moves with the solution: nothing depends on λ here."""
@@ -266,16 +276,37 @@ class SurfaceContact:
                 self.edge_neighbour, offsets, cand, self.eps_n, self.dofs)
 
     def add_residual_global(self, u, b):
-        self.state = _cpp.assemble_surface_residual(*self._args(u), b)
+        self.state = _cpp.assemble_surface_residual(*self._args(u), b, multipliers=self.multipliers)
 
     def add_tangent(self, u, A):
-        _cpp.assemble_surface_tangent(*self._args(u), A)
+        _cpp.assemble_surface_tangent(*self._args(u), A, multipliers=self.multipliers)
 
     def evaluate(self, u):
-        return _cpp.evaluate_surface_contact(*self._args(u))
+        return _cpp.evaluate_surface_contact(*self._args(u), multipliers=self.multipliers)
+
+    # --- augmented Lagrangian ------------------------------------------------
+    def max_penetration(self, u):
+        """Largest penetration ⟨−g⟩ over the paired slave points (all ranks)."""
+        state = self.evaluate(u)
+        gap = np.asarray(state.gap)[np.asarray(state.status) == 2]  # PairingStatus::Paired
+        local = float(max(0.0, -gap.min())) if len(gap) else 0.0
+        return self.comm.allreduce(local, op=MPI.MAX)
+
+    def augment(self, u):
+        """Uzawa update λ_N ← ⟨λ_N − ε_N ĝ⟩ (the current pressures)."""
+        self.multipliers = np.ascontiguousarray(self.evaluate(u).pressure, dtype=float)
+
+    def restore_multipliers(self):
+        self.multipliers = self.multipliers_committed.copy()
+
+    def _active(self):
+        """Points active at the last residual evaluation: g ≤ 0, or (augmented) p_N > 0."""
+        if self.augmented:
+            return np.flatnonzero(np.asarray(self.state.pressure) > 0.0)
+        return np.flatnonzero(np.asarray(self.state.gap) <= 0.0)
 
     def active_set_signature(self):
-        closed = np.flatnonzero(np.asarray(self.state.gap) <= 0.0)
+        closed = self._active()
         facets = np.asarray(self.state.facet)[closed]
         local = (len(closed), int(closed.sum() + facets.sum()))
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
@@ -288,4 +319,6 @@ class SurfaceContact:
         return self.comm.allreduce(int(self.evaluate(u).num_closed), op=MPI.SUM)
 
     def commit(self, u):
+        """No history; the augmented Lagrangian's multipliers are kept as the next step's start."""
+        self.multipliers_committed = self.multipliers.copy()
         return None

@@ -66,15 +66,15 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         return self._args_at(self.current_coordinates(u))
 
     def add_residual_global(self, u, b):
-        self.state = _cpp.assemble_surface_friction_residual(*self._fargs(u), b)
+        self.state = _cpp.assemble_surface_friction_residual(*self._fargs(u), b, multipliers=self.multipliers)
 
     def add_tangent(self, u, A):
-        _cpp.assemble_surface_friction_tangent(*self._fargs(u), A)
+        _cpp.assemble_surface_friction_tangent(*self._fargs(u), A, multipliers=self.multipliers)
 
     def evaluate(self, u):
         """Pairing, normal and friction state at u against the history
         (``force`` is the total, normal + tangential, force on the slave body)."""
-        return _cpp.evaluate_surface_friction(*self._fargs(u))
+        return _cpp.evaluate_surface_friction(*self._fargs(u), multipliers=self.multipliers)
 
     friction_state = evaluate
 
@@ -86,7 +86,7 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         return self.global_ids[self.point_nodes[:, 0]].astype(np.int64)  # the slave node of each point
 
     def active_set_signature(self):
-        closed = np.flatnonzero(np.asarray(self.state.gap) <= 0.0)
+        closed = self._active()
         facets = np.asarray(self.state.facet)[closed]
         slipping = int(np.count_nonzero(np.asarray(self.state.state) == SLIP))
         local = (len(closed), int(closed.sum() + facets.sum()), slipping)
@@ -109,10 +109,12 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         self.t_old = np.where(paired[:, None], np.asarray(state.traction), 0.0)
 
     def commit(self, u):
-        """Make the converged state the history of the next step."""
+        """Make the converged state the history of the next step (and, augmented,
+        the multipliers the next step's start)."""
         state = self.committed = self.evaluate(u)
         self.accumulate(state)
         self._store_history(state)
+        self.multipliers_committed = self.multipliers.copy()
         self.lam_committed = getattr(self, "load_factor", 0.0)
         return state
 
