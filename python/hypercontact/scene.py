@@ -576,9 +576,6 @@ def _law_of_surface(scene, surface):
 def _check_contact_kind(c, where, scene=None):
     """Keys that belong to one kind of contact only; an automatic penalty
     needs a built-in law on the slave side (its small-strain modulus)."""
-    if c["enforcement"] == "augmented_lagrangian" and c["obstacle"] == "surface":
-        _fail(f"{where}.enforcement", "the augmented Lagrangian is implemented for rigid obstacles "
-              "(plane, box) only so far; use \"penalty\" with a deformable master")
     if scene is not None and c["eps_n"] == 0:
         material, key = _law_of_surface(scene, c["surface"])
         if material["law"] not in BUILTIN_LAWS:
