@@ -73,7 +73,7 @@ class Recorder:
     def run(self, monkeypatch):
         def write_step(writer, load_factor, *args, **kwargs):
             row = WRITE_STEP(writer, load_factor, *args, **kwargs)
-            self.steps.append(self.record(row))
+            self.steps.append({**self.record(row), "residual": writer.steps[-1]["residual_norms"][-1]})
             return row
 
         monkeypatch.setattr(results.ResultsWriter, "write_step", write_step)
@@ -215,13 +215,20 @@ def test_global_balance_on_the_octant(runs, case):
     the three cut planes, ∮ n da = 0 and only the x = 0 piece has n_x ≠ 0), the
     plane pushes back, the x = 0 support (the other half of the sphere) holds
     the rest; with friction the same along y, where the plane's tangential
-    force enters."""
+    force enters. The imbalance is a sum of the converged residual over the free
+    dofs of one direction, at most √n |R| (Cauchy–Schwarz); and every accepted
+    step is in balance to far better than the forces involved (solver.rtol =
+    1e-9 of the scene, here asked to 1e-7 of the pressure's push), also when
+    the predictor pushed the shell deep into the plane."""
     r = runs[case]
+    n = np.sqrt(len(r.X))
     for s in r.steps:
         row = s["row"]
+        assert s["residual"] <= 1e-7 * s["p"] * s["cut_area_x"]
         for a in ("x", "y"):
             push = s["p"] * s[f"cut_area_{a}"]
-            assert s[f"reaction_{a}"] + push + row[f"wall_f{a}"] / SYM == pytest.approx(0.0, abs=1e-8 * push)
+            imbalance = s[f"reaction_{a}"] + push + row[f"wall_f{a}"] / SYM
+            assert abs(imbalance) <= n * s["residual"] + 1e-12 * push
     # the plane takes a growing share of the push: at the end a sizeable part of it
     last = r.steps[-1]
     assert -last["row"]["wall_fx"] / SYM > 0.1 * last["p"] * last["cut_area_x"]
