@@ -365,11 +365,11 @@ def _write(out, study, results, ref, unc, how):
              "Wall time: the solve (load steps, output), without the setup (mesh, form compilation: "
              "cached across runs, so the first case would pay for it). Measured on whatever machine ran the "
              "study; on a shared one the times are noisy (compare them within one run: the ratios hold).", "",
-             "| settings | value |" + (" reference |" if per_case else "")
+             "| case | settings | value |" + (" reference |" if per_case else "")
              + " error | wall (s) | setup (s) | Newton its | Pareto |",
-             "|---|---|" + ("---|" if per_case else "") + "---|---|---|---|---|"]
+             "|---|---|---|" + ("---|" if per_case else "") + "---|---|---|---|---|"]
     for r in results:
-        lines.append(f"| {r['settings'] or '(the study set only)'} | {r['value']:.6g} |" + (f" {r['reference']:.6g} |" if per_case else "")
+        lines.append(f"| {r['case']} | {r['settings'] or '(the study set only)'} | {r['value']:.6g} |" + (f" {r['reference']:.6g} |" if per_case else "")
                      + f" {100 * r['error']:.3g} % | {r['wall_s']:.1f} | "
                      f"{r['setup_s']:.1f} | {r['newton']} | {'yes' if r.get('pareto') else ''} |")
     for target in (1e-2, 1e-3):
@@ -391,9 +391,10 @@ def _write(out, study, results, ref, unc, how):
     front = sorted([r for r in ok if r["pareto"]], key=lambda r: r["wall_s"])
     ax.loglog([r["wall_s"] for r in front], [max(r["error"], floor) for r in front], "o-", color="C3",
               label="Pareto front")
-    for r in ok:
-        ax.annotate(r["settings"], (r["wall_s"], max(r["error"], floor)), fontsize=6)
-    ax.set_xlabel("wall time (s)")
+    for r in ok:  # case numbers: the settings are in study.md's table
+        ax.annotate(str(r["case"]), (r["wall_s"], max(r["error"], floor)), fontsize=8,
+                    xytext=(3, 3), textcoords="offset points")
+    ax.set_xlabel("wall time (s); points labelled by case number (study.md)")
     ax.set_ylabel(f"relative error of {study['quantity']}")
     ax.set_title(study["title"], fontsize=9)
     ax.grid(alpha=0.3, which="both")
