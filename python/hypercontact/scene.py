@@ -219,6 +219,7 @@ SCHEMA = {
         "max_cutbacks": Key("integer", 8, NON_NEGATIVE),
         "grow_below": Key("integer", 5, NON_NEGATIVE),
         "growth": Key("number", 1.5, (lambda x: x >= 1, ">= 1")),
+        "grow_after": Key("integer", 3, NON_NEGATIVE),
         "max_steps": Key("integer", 200, POSITIVE),
         "chatter_warning": Key("integer", 6, POSITIVE),
         "target_iterations": Key("integer", 5, POSITIVE),
@@ -666,6 +667,10 @@ def _check_consistency(scene, base_dir):
             _fail(first, f"{steps['control']} control needs a non-zero load, found only zero loads")
         if any(any(c["motion"]) for c in scene["contact"]):
             _fail("steps.control", f"{steps['control']} control with moving obstacles is not supported yet")
+        for i, c in enumerate(scene["contact"]):
+            if c["enforcement"] == "augmented_lagrangian":
+                _fail(f"contact[{i}].enforcement", f"the augmented Lagrangian's updates run between the Newton "
+                      f"solves of load control; with {steps['control']} control use \"penalty\"")
         if any(any(bc["motion"]) for bc in scene["bc"]):
             _fail("steps.control", f"{steps['control']} control with prescribed motion is not supported yet")
     for i, bc in enumerate(scene["bc"]):
