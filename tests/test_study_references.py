@@ -134,3 +134,13 @@ def test_bad_reference_specs_are_rejected_with_a_clear_message(tmp_path, capsys,
     err = capsys.readouterr().err
     assert f"study key '{key}'" in err and message in err
     assert not (tmp_path / "o" / "case00").exists()  # rejected before any case ran
+
+
+def test_built_in_studies_load():
+    """Every study in scenes/studies validates (scene found, reference applicable)."""
+    from hypercontact.study import cases_of, load_study
+
+    paths = sorted((cli.SCENES / "studies").glob("*.toml"))
+    assert {"hertz", "hertz_a", "patch", "punch_mu0.3"} <= {p.stem for p in paths}
+    for path in paths:
+        assert cases_of(load_study(path)), path.name
