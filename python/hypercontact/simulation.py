@@ -153,7 +153,7 @@ class Simulation:
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
         self.snes = None  # built by the load-control driver only
         self.bordered = None  # built by the continuation driver only
-        self.active_sets, self.update_norms = [], []
+        self.active_sets, self.stick_slip_sets, self.update_norms = [], [], []
         n_rigid, n_p = sum(c["obstacle"] != "surface" for c in sc["contact"]), len(sc["pressure"])
         n_t, n_b, n_m = len(sc["traction"]), len(sc["body_force"]), len(self._bc_motion)
         mus = sorted({c["mu"] for c in sc["contact"] if c["mu"] > 0})
@@ -340,10 +340,11 @@ class Simulation:
         """Per Newton iteration: the norm of the Newton correction and the
         contact active set of the current iterate."""
         if its == 0:
-            self.active_sets, self.update_norms = [], []
+            self.active_sets, self.stick_slip_sets, self.update_norms = [], [], []
         else:
             self.update_norms.append(snes.getSolutionUpdate().norm())
         self.active_sets.append([c.active_set_signature() for c in self.contacts])
+        self.stick_slip_sets.append([c.stick_slip_signature() for c in self.contacts if isinstance(c, FRICTIONAL)])
 
     def _eta(self, progress):
         """'  ~N s left', extrapolating the time since this run (or resume)
@@ -466,6 +467,12 @@ class Simulation:
         sets = self.active_sets
         return sum(1 for a, b in zip(sets, sets[1:]) if a != b)
 
+    def stick_slip_changes(self):
+        """Newton iterations of the last solve in which some frictional
+        contact's stick/slip status set changed."""
+        sets = self.stick_slip_sets
+        return sum(1 for a, b in zip(sets, sets[1:]) if a != b)
+
     def last_active_set_change(self):
         """Index of the first Newton iterate from which the active set stayed
         fixed in the last solve."""
@@ -542,8 +549,11 @@ class Simulation:
         self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0
+        # converged steps since the last cut-back or growth, and the Δλ that failed before the last cut-back
+        streak, regrow_to = 0, 0.0
         if state is not None:
             lam, dlam = state["lam"], state["dlam"]
+            streak, regrow_to = state.get("streak", 0), state.get("regrow_to", 0.0)
             self._lam = lam
             self.set_load_factor(lam)
         u_saved = self.w.x.array.copy()
@@ -572,25 +582,39 @@ class Simulation:
                     c.commit(self.u)
                 u_saved[:] = self.w.x.array
                 with self.timers("output"):
-                    changes = self.active_set_changes()
+                    changes, flips = self.active_set_changes(), self.stick_slip_changes()
                     row = writer.write_step(lam, its, norms, split(), self.last_active_set_change(),
-                                            self.update_norms, changes)
+                                            self.update_norms, changes, flips)
                 if changes >= st["chatter_warning"]:
                     self.log(f"   the contact active set changed in {changes} Newton iterations of this step "
                              "(chattering): smaller steps or a backtracking line search damp it")
+                if flips >= st["chatter_warning"]:
+                    self.log(f"   the stick/slip status changed in {flips} Newton iterations of this step "
+                             "(chattering): smaller steps or a backtracking line search damp it")
                 self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
                          f"|R| = {norms[-1]:.2e}  ({reason}){self._eta(lam)}")
+                streak += 1
                 if its <= st["grow_below"]:
-                    dlam = min(dlam * st["growth"], st["max"])
-                self._save_checkpoint(writer, {"lam": lam, "dlam": dlam})
+                    dlam, streak = min(dlam * st["growth"], st["max"]), 0
+                elif st["grow_after"] and streak >= st["grow_after"] and dlam < regrow_to:
+                    # recovery after a cut-back: steps that always take more than grow_below iterations
+                    # (friction, deformable masters) would otherwise keep the cut Δλ to the end
+                    dlam, streak = min(dlam * st["growth"], regrow_to, st["max"]), 0
+                self._save_checkpoint(writer, {"lam": lam, "dlam": dlam, "streak": streak, "regrow_to": regrow_to})
                 continue
             self.w.x.array[:] = u_saved
             for c in self.contacts:
                 if getattr(c, "augmented", False):
                     c.restore_multipliers()
-            cuts += 1
+            if cuts == 0:
+                regrow_to = dlam
+            cuts, streak = cuts + 1, 0
             dlam *= 0.5
-            self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its); "
+            changes, flips = self.active_set_changes(), self.stick_slip_changes()
+            chatter = "".join(f"; the {what} changed in {n} Newton iterations (chattering)"
+                              for what, n in (("contact active set", changes), ("stick/slip status", flips))
+                              if n >= st["chatter_warning"])
+            self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its{chatter}); "
                      f"cut back to Δλ = {dlam:.3g}")
             if cuts > st["max_cutbacks"] or dlam < st["min"]:
                 raise StepFailure(
