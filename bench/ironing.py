@@ -1,6 +1,7 @@
-"""Ironing benchmark (Puso & Laursen 2004, 3D) with deformable–deformable
-Coulomb friction.
+"""Ironing benchmark (Puso & Laursen 2004, 3D) with Coulomb friction, the die
+deformable (faceted, node-to-surface) or a smooth rigid cylinder.
 
+    .venv/bin/python bench/ironing.py --die rigid --eps-t 5      # bench/results/ironing_rigid.md
     .venv/bin/python bench/ironing.py [--n 18 --m 6 --die-n 16] [--press-steps 10 --slide-steps 40]
                                       [--eps-n 50 --eps-t 50] [--steady-from 1.5]
                                       [--max-it-slide 12 --stall-tol 0.2] [--linesearch-slide basic]
