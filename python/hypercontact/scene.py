@@ -668,6 +668,10 @@ def _check_consistency(scene, base_dir):
         if any(any(c["motion"]) for c in scene["contact"]):
             _fail("steps.control", f"{steps['control']} control with moving obstacles is not supported yet")
         for i, c in enumerate(scene["contact"]):
+            if c["obstacle"] == "surface":
+                _fail(f"contact[{i}].obstacle", f"{steps['control']} control with a deformable master "
+                      f"(obstacle = \"surface\") is not supported yet (its contact search runs between the load "
+                      f"steps of load control); use load control or a rigid obstacle")
             if c["enforcement"] == "augmented_lagrangian":
                 _fail(f"contact[{i}].enforcement", f"the augmented Lagrangian's updates run between the Newton "
                       f"solves of load control; with {steps['control']} control use \"penalty\"")

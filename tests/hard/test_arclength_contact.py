@@ -412,3 +412,15 @@ def test_augmented_lagrangian_with_continuation_is_refused():
     data["contact"][0]["enforcement"] = "augmented_lagrangian"
     with pytest.raises(scene.SceneError, match=r"contact\[0\]\.enforcement"):
         scene.load(data)
+
+
+def test_deformable_master_with_continuation_is_refused():
+    """The deformable contact's search runs between load-control steps only:
+    arc length against obstacle = "surface" is refused, naming the key."""
+    data = sphere_plane()
+    contact = data["contact"][0]
+    for key in ("point", "normal"):
+        contact.pop(key, None)
+    contact.update(obstacle="surface", master="inner")
+    with pytest.raises(scene.SceneError, match=r"contact\[0\]\.obstacle.*deformable master"):
+        scene.load(data)
