@@ -156,36 +156,23 @@ def main():
             summary = dict(meta, status=status, wall_s=time.perf_counter() - t0, rows=rows)
             (out / ("ironing_rigid.json" if rigid else "ironing.json")).write_text(json.dumps(summary, indent=1))
 
-    def record_rigid(phase, s):
-        st, normal = c.committed, c.evaluate(sim.u)
-        Fn = -comm.allreduce(np.asarray(normal.force), op=MPI.SUM)  # on the die = −(on the slab)
-        F = Fn - comm.allreduce(np.asarray(st.force), op=MPI.SUM)
-        p = np.asarray(normal.pressure)
-        N = comm.allreduce(float(np.sum(c.area * p)), op=MPI.SUM)
-        state = np.asarray(st.state)
-        slip = state == 2
-        t_abs = np.linalg.norm(np.asarray(st.traction), axis=1)
-        wt = comm.allreduce(float(np.sum((c.area * t_abs)[slip])), op=MPI.SUM)
-        wp = comm.allreduce(float(np.sum((c.area * p)[slip])), op=MPI.SUM)
-        rows.append({"phase": phase, "s": s, "Fx": F[0], "Fy": F[1], "Fz": F[2], "N": N,
-                     "stick": int(comm.allreduce(np.count_nonzero(state == 1), op=MPI.SUM)),
-                     "slip": int(comm.allreduce(np.count_nonzero(slip), op=MPI.SUM)),
-                     "slip_t": wt, "slip_pN": wp, "dissipation": c.dissipation,
-                     "Fx_normal": Fn[0], "Fz_normal": Fn[2], "Fx_friction": F[0] - Fn[0], "Fz_friction": F[2] - Fn[2]})
-
     def record(phase, s):
-        if rigid:
-            return record_rigid(phase, s)
         st = c.committed
-        F = -comm.allreduce(np.asarray(st.force), op=MPI.SUM)  # on the die = −(on the slab)
-        Fn = -comm.allreduce(np.asarray(st.normal_force), op=MPI.SUM)  # its normal-pressure part
-        p = np.asarray(st.pressure)
-        N = comm.allreduce(float(np.sum(c.point_area * p)), op=MPI.SUM)
+        if rigid:  # normal and friction states come separately
+            normal = c.evaluate(sim.u)
+            Fn = -comm.allreduce(np.asarray(normal.force), op=MPI.SUM)  # on the die = −(on the slab)
+            F = Fn - comm.allreduce(np.asarray(st.force), op=MPI.SUM)
+            p, area = np.asarray(normal.pressure), c.area
+        else:
+            F = -comm.allreduce(np.asarray(st.force), op=MPI.SUM)  # on the die = −(on the slab)
+            Fn = -comm.allreduce(np.asarray(st.normal_force), op=MPI.SUM)  # its normal-pressure part
+            p, area = np.asarray(st.pressure), c.point_area
+        N = comm.allreduce(float(np.sum(area * p)), op=MPI.SUM)
         state = np.asarray(st.state)
         slip = state == 2
         t_abs = np.linalg.norm(np.asarray(st.traction), axis=1)
-        wt = comm.allreduce(float(np.sum((c.point_area * t_abs)[slip])), op=MPI.SUM)
-        wp = comm.allreduce(float(np.sum((c.point_area * p)[slip])), op=MPI.SUM)
+        wt = comm.allreduce(float(np.sum((area * t_abs)[slip])), op=MPI.SUM)
+        wp = comm.allreduce(float(np.sum((area * p)[slip])), op=MPI.SUM)
         rows.append({"phase": phase, "s": s, "Fx": F[0], "Fy": F[1], "Fz": F[2], "N": N,
                      "stick": int(comm.allreduce(np.count_nonzero(state == 1), op=MPI.SUM)),
                      "slip": int(comm.allreduce(np.count_nonzero(slip), op=MPI.SUM)),
