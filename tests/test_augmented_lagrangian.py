@@ -11,6 +11,7 @@ from hypercontact import scene
 from hypercontact.simulation import Simulation
 
 from conftest import ROOT
+from reference.augmentations import run_counting_augmentations
 
 TOL = 1e-3  # mm: gap tolerance
 
@@ -24,16 +25,7 @@ def run(tmp_path, factor, enforcement):
         c.update(penalty_factor=factor, enforcement=enforcement, gap_tolerance=TOL, max_augmentations=30)
     sc = scene.load(data, [f"output.dir={tmp_path}"])
     sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
-    augmentations = []
-    solve = sim._augment
-
-    def counting(*args):
-        result = solve(*args)
-        augmentations.append(sim.augmentations)
-        return result
-
-    sim._augment = counting
-    writer = sim.run(out_dir=str(tmp_path))
+    writer, augmentations = run_counting_augmentations(sim, tmp_path)
     return sim, writer, augmentations
 
 

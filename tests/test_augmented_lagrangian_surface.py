@@ -20,6 +20,7 @@ from scipy.optimize import fsolve
 from conftest import ROOT
 from hypercontact import scene
 from hypercontact.simulation import Simulation
+from reference.augmentations import run_counting_augmentations
 from reference.homogeneous import mooney_rivlin_principal, nominal_stress
 
 HERTZ_MESH = (6, 6, 4, 4)  # block n, m; ball n, m
@@ -29,16 +30,7 @@ def run(name, overrides):
     """Solve scenes/<name> with the overrides; returns (sim, writer, augmentations per step)."""
     sc = scene.load(ROOT / "scenes" / name, list(overrides) + ["output.xdmf=false"])
     sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
-    augmentations = []
-    solve = sim._augment
-
-    def counting(*args):
-        result = solve(*args)
-        augmentations.append(sim.augmentations)
-        return result
-
-    sim._augment = counting
-    writer = sim.run(out_dir=str(sc["output"]["dir"]))
+    writer, augmentations = run_counting_augmentations(sim, sc["output"]["dir"])
     return sim, writer, augmentations
 
 

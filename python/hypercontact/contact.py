@@ -41,7 +41,20 @@ def make_obstacle(spec, load_factor):
     raise ValueError(f"unknown obstacle {spec['obstacle']!r}")
 
 
-class RigidContact:
+class UzawaMultipliers:
+    """The augmented Lagrangian's per-point pressures λ_N (``multipliers``,
+    empty for pure penalty), shared by rigid and deformable contacts: the
+    kernels' current pressures are ⟨λ_N − ε_N g⟩, so an update takes them."""
+
+    def augment(self, u):
+        """Uzawa update λ_N ← ⟨λ_N − ε_N g⟩ (the current pressures)."""
+        self.multipliers = np.ascontiguousarray(self.evaluate(u).pressure, dtype=float)
+
+    def restore_multipliers(self):
+        self.multipliers = self.multipliers_committed.copy()
+
+
+class RigidContact(UzawaMultipliers):
     """One slave surface against one rigid obstacle, normal penalty."""
 
     def __init__(self, spec, V, facet_tags, surface_tag, constrained):
@@ -95,13 +108,6 @@ class RigidContact:
         gap = np.asarray(self.evaluate(u).gap)
         local = float(max(0.0, -gap.min())) if len(gap) else 0.0
         return self.comm.allreduce(local, op=MPI.MAX)
-
-    def augment(self, u):
-        """Uzawa update λ ← ⟨λ − ε_N g⟩ (the current pressures)."""
-        self.multipliers = np.ascontiguousarray(self.evaluate(u).pressure, dtype=float)
-
-    def restore_multipliers(self):
-        self.multipliers = self.multipliers_committed.copy()
 
     def active_set_signature(self):
         """(number of closed nodes, checksum of their global indices) at the

@@ -31,7 +31,7 @@ from mpi4py import MPI
 from . import _cpp
 from . import _dolfinx as dfx
 from . import penalty
-from .contact import nodal_areas
+from .contact import UzawaMultipliers, nodal_areas
 
 GAUSS_2X2 = np.array([-1.0, 1.0]) / np.sqrt(3.0)
 
@@ -99,7 +99,7 @@ def edge_neighbours(facets):
     return out.reshape(f, 4)
 
 
-class SurfaceContact:
+class SurfaceContact(UzawaMultipliers):
     """One slave surface against one master surface of the same mesh
     (possibly of another body), frictionless normal penalty."""
 
@@ -291,13 +291,6 @@ class SurfaceContact:
         gap = np.asarray(state.gap)[np.asarray(state.status) == 2]  # PairingStatus::Paired
         local = float(max(0.0, -gap.min())) if len(gap) else 0.0
         return self.comm.allreduce(local, op=MPI.MAX)
-
-    def augment(self, u):
-        """Uzawa update λ_N ← ⟨λ_N − ε_N ĝ⟩ (the current pressures)."""
-        self.multipliers = np.ascontiguousarray(self.evaluate(u).pressure, dtype=float)
-
-    def restore_multipliers(self):
-        self.multipliers = self.multipliers_committed.copy()
 
     def _active(self):
         """Points active at the last residual evaluation: g ≤ 0, or (augmented) p_N > 0."""
