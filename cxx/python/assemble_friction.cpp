@@ -28,8 +28,10 @@ py::array_t<double> as_n3(const std::vector<double>& v) {
 }  // namespace
 
 void declare_assemble_friction(py::module_& m) {
-  py::class_<RigidFrictionState>(m, "RigidFrictionState", "Output of assemble_rigid_friction_residual")
-      .def_property_readonly("traction", [](const RigidFrictionState& s) { return as_n3(s.traction); })
+  py::class_<RigidFrictionState>(m, "RigidFrictionState",
+                                 "Output of assemble_rigid_friction_residual")
+      .def_property_readonly("traction",
+                             [](const RigidFrictionState& s) { return as_n3(s.traction); })
       .def_property_readonly("slip_increment",
                              [](const RigidFrictionState& s) { return as_n3(s.slip_increment); })
       .def_property_readonly("dissipation",
@@ -46,30 +48,30 @@ void declare_assemble_friction(py::module_& m) {
       "assemble_rigid_friction_residual",
       [](const Obstacle& obstacle, const RealArray& x, const RealArray& area, double eps_n,
          double eps_t, double mu, const RealArray& xi_old, const RealArray& t_old,
-         const IndexArray& dofs, py::array b, const RealArray& multipliers) {
+         const IndexArray& dofs, py::array b, const RealArray& multipliers, double smoothing) {
         check_friction_nodes(x, area, xi_old, t_old, dofs);
         const std::span<double> b_span = as_writable_span(b, "b");
         return assemble_rigid_friction_residual(obstacle, as_span(x), as_span(area), eps_n, eps_t,
-                                                mu, as_span(xi_old), as_span(t_old),
-                                                as_span(dofs), b_span, as_span(multipliers));
+                                                mu, as_span(xi_old), as_span(t_old), as_span(dofs),
+                                                b_span, as_span(multipliers), smoothing);
       },
       py::arg("obstacle"), py::arg("x"), py::arg("area"), py::arg("eps_n"), py::arg("eps_t"),
       py::arg("mu"), py::arg("xi_old"), py::arg("t_old"), py::arg("dofs"), py::arg("b"),
-      py::arg("multipliers") = RealArray(0),
+      py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       "Adds the Coulomb friction residuals into b[dofs] in place; returns a RigidFrictionState.");
   m.def(
       "assemble_rigid_friction_tangent",
       [](const Obstacle& obstacle, const RealArray& x, const RealArray& area, double eps_n,
          double eps_t, double mu, const RealArray& xi_old, const RealArray& t_old,
-         const IndexArray& dofs, Mat A, const RealArray& multipliers) {
+         const IndexArray& dofs, Mat A, const RealArray& multipliers, double smoothing) {
         check_friction_nodes(x, area, xi_old, t_old, dofs);
         assemble_rigid_friction_tangent(obstacle, as_span(x), as_span(area), eps_n, eps_t, mu,
                                         as_span(xi_old), as_span(t_old), as_span(dofs), A,
-                                        as_span(multipliers));
+                                        as_span(multipliers), smoothing);
       },
       py::arg("obstacle"), py::arg("x"), py::arg("area"), py::arg("eps_n"), py::arg("eps_t"),
       py::arg("mu"), py::arg("xi_old"), py::arg("t_old"), py::arg("dofs"), py::arg("A"),
-      py::arg("multipliers") = RealArray(0),
+      py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       "Adds the (non-symmetric) friction tangents into the petsc4py Mat A (ADD_VALUES).");
 }
 

@@ -26,7 +26,7 @@ void declare_assemble_surface(py::module_& m) {
                   const RealArray& point_area, const IndexArray& facets,
                   const IndexArray& edge_neighbour, const IndexArray& offsets,
                   const IndexArray& candidates, double eps_n, const IndexArray& dofs,
-                  const RealArray& multipliers) {
+                  const RealArray& multipliers, double smoothing) {
     check_shape(multipliers, "multipliers", {any});
     check_shape(x, "x", {any, 3});
     check_shape(point_area, "point_area", {any});
@@ -40,48 +40,49 @@ void declare_assemble_surface(py::module_& m) {
     return SurfaceContactInput{as_span(x),       as_span(point_nodes), as_span(point_weights),
                                as_span(point_area), as_span(facets),   as_span(edge_neighbour),
                                as_span(offsets), as_span(candidates),  as_span(dofs),
-                               eps_n,            as_span(multipliers)};
+                               eps_n,            as_span(multipliers), smoothing};
   };
   const char* doc_args =
       "x (nn, 3) current coordinates of the contact nodes; point_nodes, point_weights (np, 4);\n"
       "point_area (np,); facets, edge_neighbour (nf, 4); offsets (np + 1,), candidates: the broad\n"
       "phase's CSR; eps_n; dofs (nn, 3) int32 global indices, -1 = constrained (skipped);\n"
-      "multipliers (np,) or empty: augmented Lagrangian pressures lambda_N >= 0 (empty: penalty).";
+      "multipliers (np,) or empty: augmented Lagrangian pressures lambda_N >= 0 (empty: penalty);\n"
+      "smoothing: the band delta >= 0 of the smoothed normal law (0: the Macaulay bracket).";
   m.def(
       "evaluate_surface_contact",
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
-              double eps_n, const IndexArray& dofs, const RealArray& lam) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam), nullptr,
+              double eps_n, const IndexArray& dofs, const RealArray& lam, double smoothing) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), nullptr,
                                         nullptr);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
       py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
-      py::arg("eps_n"), py::arg("dofs"), py::arg("multipliers") = RealArray(0),
+      py::arg("eps_n"), py::arg("dofs"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       (std::string("Pairing, gaps and pressures of every slave point, no assembly.\n") + doc_args)
           .c_str());
   m.def(
       "assemble_surface_residual",
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
-              double eps_n, const IndexArray& dofs, Vec b, const RealArray& lam) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam), b, nullptr);
+              double eps_n, const IndexArray& dofs, Vec b, const RealArray& lam, double smoothing) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), b, nullptr);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
       py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
-      py::arg("eps_n"), py::arg("dofs"), py::arg("b"), py::arg("multipliers") = RealArray(0),
+      py::arg("eps_n"), py::arg("dofs"), py::arg("b"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       (std::string("Adds the residual into the petsc4py Vec b (VecSetValues, global, ADD);\n"
                    "call b.assemblyBegin/End afterwards.\n") + doc_args).c_str());
   m.def(
       "assemble_surface_tangent",
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
-              double eps_n, const IndexArray& dofs, Mat A, const RealArray& lam) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam), nullptr, A);
+              double eps_n, const IndexArray& dofs, Mat A, const RealArray& lam, double smoothing) {
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), nullptr, A);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
       py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
-      py::arg("eps_n"), py::arg("dofs"), py::arg("A"), py::arg("multipliers") = RealArray(0),
+      py::arg("eps_n"), py::arg("dofs"), py::arg("A"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       (std::string("Adds the tangent into the petsc4py Mat A (MatSetValues, global, ADD); call\n"
                    "A.assemble() afterwards.\n") + doc_args).c_str());
 }

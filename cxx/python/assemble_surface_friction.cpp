@@ -32,7 +32,8 @@ void declare_assemble_surface_friction(py::module_& m) {
                   const RealArray& point_area, const IndexArray& facets, const IndexArray& edge_neighbour,
                   const IndexArray& offsets, const IndexArray& candidates, double eps_n,
                   const IndexArray& dofs, const IndexArray& old_facet, const RealArray& xi_old,
-                  const RealArray& t_old, double eps_t, double mu, const RealArray& multipliers) {
+                  const RealArray& t_old, double eps_t, double mu, const RealArray& multipliers,
+                  double smoothing) {
     check_shape(multipliers, "multipliers", {any});
     check_shape(x, "x", {any, 3});
     check_shape(point_area, "point_area", {any});
@@ -50,14 +51,15 @@ void declare_assemble_surface_friction(py::module_& m) {
     return SurfaceFrictionInput{
         SurfaceContactInput{as_span(x), as_span(point_nodes), as_span(point_weights), as_span(point_area),
                             as_span(facets), as_span(edge_neighbour), as_span(offsets), as_span(candidates),
-                            as_span(dofs), eps_n, as_span(multipliers)},
+                            as_span(dofs), eps_n, as_span(multipliers), smoothing},
         as_span(old_facet), as_span(xi_old), as_span(t_old), eps_t, mu};
   };
   const char* doc =
       "x (nn, 3); point_nodes, point_weights (np, 4); point_area (np,); facets, edge_neighbour (nf, 4);\n"
       "offsets (np + 1,), candidates: the broad phase's CSR; eps_n; dofs (nn, 3) int32 global, -1 =\n"
       "constrained; history: old_facet (np,) int32 (-1 none), xi_old (np, 2), t_old (np, 3); eps_t; mu;\n"
-      "multipliers (np,) or empty: augmented Lagrangian pressures lambda_N >= 0 (empty: penalty).";
+      "multipliers (np,) or empty: augmented Lagrangian pressures lambda_N >= 0 (empty: penalty);\n"
+      "smoothing: the band delta >= 0 of the smoothed normal law (0: the Macaulay bracket).";
 #define HC_ARGS                                                                                         \
   py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"), py::arg("facets"), \
       py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"), py::arg("eps_n"),               \
@@ -68,32 +70,32 @@ void declare_assemble_surface_friction(py::module_& m) {
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c, double eps_n,
               const IndexArray& dofs, const IndexArray& of, const RealArray& xo, const RealArray& to,
-              double eps_t, double mu, const RealArray& lam) {
-        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam),
+              double eps_t, double mu, const RealArray& lam, double smoothing) {
+        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam, smoothing),
                                          nullptr, nullptr);
       },
-      HC_ARGS, py::arg("multipliers") = RealArray(0), (std::string("Pairing, normal and friction state of every slave point, no assembly.\n") + doc).c_str());
+      HC_ARGS, py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0, (std::string("Pairing, normal and friction state of every slave point, no assembly.\n") + doc).c_str());
   m.def(
       "assemble_surface_friction_residual",
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c, double eps_n,
               const IndexArray& dofs, const IndexArray& of, const RealArray& xo, const RealArray& to,
-              double eps_t, double mu, Vec b, const RealArray& lam) {
-        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam), b,
+              double eps_t, double mu, Vec b, const RealArray& lam, double smoothing) {
+        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam, smoothing), b,
                                          nullptr);
       },
-      HC_ARGS, py::arg("b"), py::arg("multipliers") = RealArray(0),
+      HC_ARGS, py::arg("b"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       (std::string("Adds normal + friction residual into the petsc4py Vec b (global, ADD).\n") + doc).c_str());
   m.def(
       "assemble_surface_friction_tangent",
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c, double eps_n,
               const IndexArray& dofs, const IndexArray& of, const RealArray& xo, const RealArray& to,
-              double eps_t, double mu, Mat A, const RealArray& lam) {
-        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam),
+              double eps_t, double mu, Mat A, const RealArray& lam, double smoothing) {
+        return assemble_surface_friction(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, of, xo, to, eps_t, mu, lam, smoothing),
                                          nullptr, A);
       },
-      HC_ARGS, py::arg("A"), py::arg("multipliers") = RealArray(0),
+      HC_ARGS, py::arg("A"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
       (std::string("Adds the non-symmetric tangent (old-facet columns included) into the petsc4py Mat A.\n") +
        doc).c_str());
 #undef HC_ARGS

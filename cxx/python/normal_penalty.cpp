@@ -15,9 +15,10 @@ void declare_normal_penalty(py::module_& m) {
       .def_readonly("closed", &NodalContact::closed, "g <= 0");
 
   m.def("normal_penalty_energy", &normal_penalty_energy, py::arg("projection"), py::arg("area"),
-        py::arg("eps_n"), "W = 1/2 area eps_n <-g>^2");
+        py::arg("eps_n"), py::arg("smoothing") = 0.0,
+        "W = area eps_n Q(g), Q = 1/2 <-g>^2 (smoothed over |g| < smoothing, penetration.hpp)");
   m.def("normal_penalty", &normal_penalty, py::arg("projection"), py::arg("area"), py::arg("eps_n"),
-        "Residual dW/dx and tangent of W = 1/2 area eps_n <-g>^2");
+        py::arg("smoothing") = 0.0, "Residual dW/dx and tangent of W = area eps_n Q(g)");
 }
 
 }  // namespace hypercontact::python

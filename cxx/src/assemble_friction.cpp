@@ -12,7 +12,7 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
                                      std::span<const std::int32_t> dofs,
-                                     std::span<const double> multipliers) {
+                                     std::span<const double> multipliers, double smoothing) {
   const std::size_t n = area.size();
   if (!multipliers.empty() && multipliers.size() != n)
     throw std::invalid_argument("assemble_rigid_friction: multipliers has " +
@@ -34,7 +34,8 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
     ObstacleProjection p = project(obstacle, xi);
     if (!multipliers.empty()) p.gap -= multipliers[i] / eps_n;  // augmented: p_N = ⟨λ − ε_N g⟩
     out.push_back(coulomb_friction(p, xi, Eigen::Vector3d(&xi_old[3 * i]),
-                                   Eigen::Vector3d(&t_old[3 * i]), area[i], eps_n, eps_t, mu));
+                                   Eigen::Vector3d(&t_old[3 * i]), area[i], eps_n, eps_t, mu,
+                                   smoothing));
   }
   return out;
 }
@@ -43,8 +44,10 @@ std::vector<FrictionResult> evaluate(const Obstacle& obstacle, std::span<const d
 RigidFrictionState assemble_rigid_friction_residual(
     const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
-    std::span<const std::int32_t> dofs, std::span<double> b, std::span<const double> multipliers) {
-  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers);
+    std::span<const std::int32_t> dofs, std::span<double> b, std::span<const double> multipliers,
+    double smoothing) {
+  const auto nodes =
+      evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers, smoothing);
   RigidFrictionState s{{}, {}, {}, {}, Eigen::Vector3d::Zero()};
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const FrictionResult& f = nodes[i];
@@ -70,15 +73,18 @@ void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const d
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
                                      std::span<const std::int32_t> dofs, Mat A,
-                                     std::span<const double> multipliers) {
-  const auto nodes = evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers);
+                                     std::span<const double> multipliers, double smoothing) {
+  const auto nodes =
+      evaluate(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers, smoothing);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].state == StickSlip::Open) continue;
     const std::array<PetscInt, 3> rows{dofs[3 * i], dofs[3 * i + 1], dofs[3 * i + 2]};
     const Eigen::Matrix<PetscScalar, 3, 3, Eigen::RowMajor> K = nodes[i].tangent;
     if (MatSetValuesLocal(A, 3, rows.data(), 3, rows.data(), K.data(), ADD_VALUES) != 0)
-      throw std::runtime_error("assemble_rigid_friction_tangent: MatSetValuesLocal failed for "
-                               "slave node " + std::to_string(i));
+      throw std::runtime_error(
+          "assemble_rigid_friction_tangent: MatSetValuesLocal failed for "
+          "slave node " +
+          std::to_string(i));
   }
 }
 

@@ -10,20 +10,21 @@ namespace {
 std::vector<RigidContactNode> evaluate(const Obstacle& obstacle, std::span<const double> x,
                                        std::span<const double> area, double eps_n,
                                        std::span<const std::int32_t> dofs,
-                                       std::span<const double> multipliers) {
+                                       std::span<const double> multipliers, double smoothing) {
   if (dofs.size() != x.size())
     throw std::invalid_argument("assemble_rigid: dofs has " + std::to_string(dofs.size()) +
                                 " entries, expected " + std::to_string(x.size()) +
                                 " (3 per slave node, like x)");
-  return evaluate_rigid_contact(obstacle, x, area, eps_n, multipliers);
+  return evaluate_rigid_contact(obstacle, x, area, eps_n, multipliers, smoothing);
 }
 }  // namespace
 
 RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<const double> x,
                                           std::span<const double> area, double eps_n,
                                           std::span<const std::int32_t> dofs, std::span<double> b,
-                                          std::span<const double> multipliers) {
-  const std::vector<RigidContactNode> nodes = evaluate(obstacle, x, area, eps_n, dofs, multipliers);
+                                          std::span<const double> multipliers, double smoothing) {
+  const std::vector<RigidContactNode> nodes =
+      evaluate(obstacle, x, area, eps_n, dofs, multipliers, smoothing);
   for (std::int32_t dof : dofs)
     if (dof >= static_cast<std::int64_t>(b.size()))
       throw std::out_of_range("assemble_rigid_residual: dof " + std::to_string(dof) +
@@ -48,8 +49,9 @@ RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<co
 void assemble_rigid_tangent(const Obstacle& obstacle, std::span<const double> x,
                             std::span<const double> area, double eps_n,
                             std::span<const std::int32_t> dofs, Mat A,
-                            std::span<const double> multipliers) {
-  const std::vector<RigidContactNode> nodes = evaluate(obstacle, x, area, eps_n, dofs, multipliers);
+                            std::span<const double> multipliers, double smoothing) {
+  const std::vector<RigidContactNode> nodes =
+      evaluate(obstacle, x, area, eps_n, dofs, multipliers, smoothing);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const NodalContact& c = nodes[i].contact;
     if (!c.closed) continue;

@@ -89,12 +89,14 @@ bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char
                            NodeCoordinates& master, SurfaceContact& e) {
   pr = pair_slave_point(in, boundary_node, p, s);
   const double lambda = in.multipliers.empty() ? 0.0 : in.multipliers[p];
-  // Augmented: active where λ_N − ε_N ĝ > 0, and ĝ ≥ g when g > 0, so g ≥ λ_N/ε_N is open.
-  if (pr.status != PairingStatus::Paired || (pr.gap > pr.touch && !(lambda > 0 && pr.gap < lambda / in.eps_n)))
+  // Augmented or smoothed: active where ĝ < λ_N/ε_N + δ, and ĝ ≥ g when g > 0, so a larger g is open.
+  const bool general = lambda > 0 || in.smoothing > 0;
+  if (pr.status != PairingStatus::Paired ||
+      (pr.gap > pr.touch && !(general && pr.gap < lambda / in.eps_n + in.smoothing)))
     return false;
   master = gather_facet(pr.facet, in.facets, 4, in.x);
   e = node_to_surface(pr.slave, pr.weights, master, pr.projection, in.point_area[p], in.eps_n, pr.touch,
-                      lambda);
+                      lambda, in.smoothing);
   if (!e.closed) return false;
   ++s.num_closed;
   s.pressure[p] = e.pressure;

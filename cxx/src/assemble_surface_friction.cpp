@@ -54,7 +54,7 @@ SurfaceFrictionState assemble_surface_friction(const SurfaceFrictionInput& fin, 
     const NodeCoordinates old_master = gather_facet(old, in.facets, 4, in.x);
     const SurfaceFriction fr = surface_friction(pr.slave, pr.weights, master, pr.projection, old_master, xi_old,
                                                 t_old, in.point_area[p], in.eps_n, fin.eps_t, fin.mu,
-                                                in.multipliers.empty() ? 0.0 : in.multipliers[p]);
+                                                in.multipliers.empty() ? 0.0 : in.multipliers[p], in.smoothing);
     for (int k = 0; k < 3; ++k) {
       s.traction[3 * p + k] = fr.traction[k];
       s.slip_increment[3 * p + k] = fr.slip_increment[k];

@@ -34,13 +34,16 @@ ReturnMapResult return_map(const Eigen::Vector3d& t_trial, double p_n, double mu
 
 FrictionResult coulomb_friction(const ObstacleProjection& p, const Eigen::Vector3d& x,
                                 const Eigen::Vector3d& xi_old, const Eigen::Vector3d& t_old,
-                                double area, double eps_n, double eps_t, double mu) {
+                                double area, double eps_n, double eps_t, double mu,
+                                double smoothing) {
   check_parameters(area, eps_n, eps_t, mu);
+  require(std::isfinite(smoothing) && smoothing >= 0,
+          "smoothing must be finite and >= 0, got " + std::to_string(smoothing));
   require(std::isfinite(p.gap) && p.normal.allFinite() && p.dnormal_dx.allFinite(),
           "projection must be finite");
   require(x.allFinite() && xi_old.allFinite() && t_old.allFinite(),
           "x, xi_old and t_old must be finite");
-  if (p.gap > 0)
+  if (!penetration_active(p.gap, smoothing))
     return {Eigen::Vector3d::Zero(),
             Eigen::Matrix3d::Zero(),
             Eigen::Vector3d::Zero(),
@@ -51,7 +54,8 @@ FrictionResult coulomb_friction(const ObstacleProjection& p, const Eigen::Vector
   const Eigen::Vector3d& n = p.normal;
   const Eigen::Matrix3d& dn = p.dnormal_dx;
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
-  const double p_n = -eps_n * p.gap;
+  const Penetration pen = penetration(p.gap, smoothing);
+  const double p_n = eps_n * pen.value;
   const Eigen::Vector3d w = t_old + eps_t * (x - xi_old);
   const Eigen::Vector3d t_trial = P * w;
   // T = ∂t_trial/∂x, including the turning of the tangent plane with n on curved obstacles.
@@ -68,7 +72,7 @@ FrictionResult coulomb_friction(const ObstacleProjection& p, const Eigen::Vector
       if (mu > 0) {  // Φ > 0 with μ > 0 implies |t_trial| > μ p_N ≥ 0: m is defined.
         const double norm = t_trial.norm();
         const Eigen::Vector3d m = t_trial / norm;
-        const Eigen::Vector3d dp_n = -eps_n * n;
+        const Eigen::Vector3d dp_n = (eps_n * pen.slope) * n;
         K = area * mu *
             (m * dp_n.transpose() +
              (p_n / norm) * (Eigen::Matrix3d::Identity() - m * m.transpose()) * T);

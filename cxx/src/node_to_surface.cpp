@@ -115,6 +115,12 @@ void check_parameters(double w, double eps_n, const char* who) {
 
 int rank(Feature f) { return f == Feature::Face ? 0 : f == Feature::Edge ? 1 : 2; }
 
+void check_smoothing(double smoothing, const char* who) {
+  if (!(std::isfinite(smoothing) && smoothing >= 0))
+    throw std::invalid_argument(std::string(who) + ": smoothing must be finite and >= 0, got " +
+                                std::to_string(smoothing));
+}
+
 void check_multiplier(double lambda, const char* who) {
   if (!(std::isfinite(lambda) && lambda >= 0))
     throw std::invalid_argument(std::string(who) + ": the multiplier must be finite and >= 0, got " +
@@ -187,8 +193,10 @@ SignedDistanceDerivatives signed_distance_derivatives(const detail::SurfaceKinem
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n, double touch, double lambda) {
+                               double w, double eps_n, double touch, double lambda,
+                               double smoothing) {
   constexpr const char* who = "node_to_surface";
+  check_smoothing(smoothing, who);
   check_parameters(w, eps_n, who);
   check_multiplier(lambda, who);
   const detail::SurfaceKinematics k =
@@ -204,15 +212,16 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
                         false};
   if (!(touch >= 0))
     throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
-  if (lambda > 0) {  // augmented Lagrangian
+  if (lambda > 0 || smoothing > 0) {  // augmented Lagrangian and/or smoothed penalty
     const SignedDistance sd = signed_distance(k);
-    const double p = lambda - eps_n * sd.value;
-    if (!(p > 0)) return result;  // open
+    const NormalPressure np = normal_pressure(sd.value, eps_n, lambda, smoothing);
+    if (!np.active) return result;  // open
+    const double p = np.value;
     const detail::ProjectionDerivatives d = detail::projection_derivatives(k, who);
     const SignedDistanceDerivatives dd = signed_distance_derivatives(k, d, sd);
     result.residual = -w * p * dd.gradient;
     const Eigen::MatrixXd K =
-        w * eps_n * dd.gradient * dd.gradient.transpose() - w * p * dd.hessian;
+        -w * np.slope * dd.gradient * dd.gradient.transpose() - w * p * dd.hessian;
     result.tangent = 0.5 * (K + K.transpose());
     result.pressure = p;
     result.closed = true;
@@ -232,19 +241,20 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, double w, double eps_n,
-                               double lambda) {
+                               double lambda, double smoothing) {
   check_parameters(w, eps_n, "node_to_surface");
   if (weights.size() != slave.cols() || !slave.allFinite() || !weights.allFinite())
     throw std::invalid_argument(
         "node_to_surface: slave coordinates and weights must be finite and as many");
   return node_to_surface(slave, weights, master, project_to_facet(master, slave * weights), w,
-                         eps_n, 0.0, lambda);
+                         eps_n, 0.0, lambda, smoothing);
 }
 
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                               const NodeCoordinates& master, double w, double eps_n,
-                              double touch, double lambda) {
+                              double touch, double lambda, double smoothing) {
   constexpr const char* who = "node_to_surface_energy";
+  check_smoothing(smoothing, who);
   check_parameters(w, eps_n, who);
   check_multiplier(lambda, who);
   if (weights.size() != slave.cols() || !slave.allFinite() || !weights.allFinite())
@@ -253,6 +263,8 @@ double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorX
   const FacetProjection p = project_to_facet(master, slave * weights);
   const detail::SurfaceKinematics k = detail::surface_kinematics(slave, weights, master, p, who);
   if (!(touch >= 0)) throw std::invalid_argument(std::string(who) + ": touch must be >= 0");
+  if (smoothing > 0)
+    return w * eps_n * penetration_energy(signed_distance(k).value - lambda / eps_n, smoothing);
   if (lambda > 0) {
     const double p = std::max(0.0, lambda - eps_n * signed_distance(k).value);
     return 0.5 * w * p * p / eps_n;

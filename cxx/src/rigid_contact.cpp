@@ -8,7 +8,8 @@ namespace hypercontact {
 std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                                      std::span<const double> x,
                                                      std::span<const double> area, double eps_n,
-                                                     std::span<const double> multipliers) {
+                                                     std::span<const double> multipliers,
+                                                     double smoothing) {
   if (x.size() != 3 * area.size())
     throw std::invalid_argument(
         "evaluate_rigid_contact: x has " + std::to_string(x.size()) +
@@ -26,7 +27,7 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                std::to_string(i) + " are not finite");
     const ObstacleProjection projection = project(obstacle, xi);
     if (multipliers.empty()) {
-      nodes.push_back({projection, normal_penalty(projection, area[i], eps_n)});
+      nodes.push_back({projection, normal_penalty(projection, area[i], eps_n, smoothing)});
       continue;
     }
     if (!(multipliers[i] >= 0) || !std::isfinite(multipliers[i]))
@@ -34,7 +35,7 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                   std::to_string(i) + " must be finite and >= 0");
     ObstacleProjection shifted = projection;
     shifted.gap -= multipliers[i] / eps_n;
-    nodes.push_back({projection, normal_penalty(shifted, area[i], eps_n)});
+    nodes.push_back({projection, normal_penalty(shifted, area[i], eps_n, smoothing)});
   }
   return nodes;
 }

@@ -46,8 +46,10 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
                                  const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
-                                 double mu, double lambda) {
+                                 double mu, double lambda, double smoothing) {
   check_parameters(w, eps_n, eps_t, mu);
+  require(std::isfinite(smoothing) && smoothing >= 0,
+          "smoothing must be finite and >= 0, got " + std::to_string(smoothing));
   require(std::isfinite(lambda) && lambda >= 0,
           "the multiplier must be finite and >= 0, got " + std::to_string(lambda));
   check_history(old_master, xi_old, t_old);
@@ -67,13 +69,14 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                     projection.xi,
                     projection.feature,
                     projection.local_index};
-  // Augmented (λ_N > 0): p_N = λ_N − ε_N g, open unless p_N > 0; dp_N = −ε_N dg as the penalty.
-  if (lambda > 0 ? !(lambda - eps_n * k.gap > 0) : k.gap > 0) return f;
+  // Augmented (λ_N > 0): p_N = λ_N − ε_N g, open unless p_N > 0; smoothed: p_N = ε_N P(g − λ_N/ε_N).
+  const NormalPressure np = normal_pressure(k.gap, eps_n, lambda, smoothing);
+  if (!np.active) return f;
 
   const Eigen::Vector3d& n = k.normal;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d P_T = I - n * n.transpose();
-  const double p_n = lambda > 0 ? lambda - eps_n * k.gap : eps_n * std::max(0.0, -k.gap);
+  const double p_n = np.value;
   const Eigen::VectorXd N_old = facet_shape_functions(no, xi_old);
   const Eigen::Vector3d x_old = old_master * N_old;
   const Eigen::Vector3d v = t_old + eps_t * (k.x_s - x_old);
@@ -102,7 +105,7 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
   const Eigen::MatrixXd dc = -cross_matrix(k.a.col(1)) * da[0] + cross_matrix(k.a.col(0)) * da[1];
   const Eigen::MatrixXd dn = (P_T / k.c.norm()) * dc;
   const Eigen::RowVectorXd dg = n.transpose() * dr + k.r.transpose() * dn;
-  const Eigen::RowVectorXd dp = -eps_n * dg;
+  const Eigen::RowVectorXd dp = np.slope * dg;
   Eigen::MatrixXd dv = Eigen::MatrixXd::Zero(3, total);
   for (int i = 0; i < k.ns; ++i) dv.middleCols<3>(3 * i) = eps_t * weights[i] * I;
   for (int b = 0; b < no; ++b) dv.middleCols<3>(dofs + 3 * b) = -eps_t * N_old[b] * I;
@@ -113,7 +116,7 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
     case StickSlip::Stick:
       dt = dt_trial;
       break;
-    case StickSlip::Slip: {  // μ > 0 and Φ > 0: |t_trial| > μ p_N ≥ 0, m is defined
+    case StickSlip::Slip: {  // μ > 0 and Φ > 0 : |t_trial| > μ p_N ≥ 0, m is defined
       const double norm = t_trial.norm();
       const Eigen::Vector3d m = t_trial / norm;
       dt = mu * m * dp + (mu * p_n / norm) * (I - m * m.transpose()) * dt_trial;
@@ -131,12 +134,13 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const NodeCoordinates& old_master,
                                  const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old,
-                                 double w, double eps_n, double eps_t, double mu, double lambda) {
+                                 double w, double eps_n, double eps_t, double mu, double lambda,
+                                 double smoothing) {
   check_parameters(w, eps_n, eps_t, mu);
   require(weights.size() == slave.cols() && slave.allFinite() && weights.allFinite(),
           "slave coordinates and weights must be finite and as many");
   return surface_friction(slave, weights, master, project_to_facet(master, slave * weights),
-                          old_master, xi_old, t_old, w, eps_n, eps_t, mu, lambda);
+                          old_master, xi_old, t_old, w, eps_n, eps_t, mu, lambda, smoothing);
 }
 
 }  // namespace hypercontact

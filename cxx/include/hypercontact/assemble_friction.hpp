@@ -30,7 +30,7 @@ RigidFrictionState assemble_rigid_friction_residual(
     const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
     std::span<const std::int32_t> dofs, std::span<double> b,
-    std::span<const double> multipliers = {});
+    std::span<const double> multipliers = {}, double smoothing = 0.0);
 
 /// Adds K_T,i = ∂r_T,i/∂x_i (not symmetric in slip) with MatSetValuesLocal (ADD_VALUES; rows and
 /// columns of −1 dofs skipped). Arguments as assemble_rigid_friction_residual.
@@ -39,6 +39,7 @@ void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const d
                                      double mu, std::span<const double> xi_old,
                                      std::span<const double> t_old,
                                      std::span<const std::int32_t> dofs, Mat A,
-                                     std::span<const double> multipliers = {});
+                                     std::span<const double> multipliers = {},
+                                     double smoothing = 0.0);
 
 }  // namespace hypercontact

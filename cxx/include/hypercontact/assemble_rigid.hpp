@@ -27,7 +27,8 @@ struct RigidContactState {
 RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<const double> x,
                                           std::span<const double> area, double eps_n,
                                           std::span<const std::int32_t> dofs, std::span<double> b,
-                                          std::span<const double> multipliers = {});
+                                          std::span<const double> multipliers = {},
+                                          double smoothing = 0.0);
 
 /// Adds the contact tangent K_i = A_i ε_N (n_i ⊗ n_i + g_i ∂n_i/∂x) of every closed node:
 ///   MatSetValuesLocal(A, 3, dofs(i, :), 3, dofs(i, :), K_i, ADD_VALUES);
@@ -37,6 +38,6 @@ RigidContactState assemble_rigid_residual(const Obstacle& obstacle, std::span<co
 void assemble_rigid_tangent(const Obstacle& obstacle, std::span<const double> x,
                             std::span<const double> area, double eps_n,
                             std::span<const std::int32_t> dofs, Mat A,
-                            std::span<const double> multipliers = {});
+                            std::span<const double> multipliers = {}, double smoothing = 0.0);
 
 }  // namespace hypercontact

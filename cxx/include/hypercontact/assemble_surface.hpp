@@ -60,6 +60,9 @@ struct SurfaceContactInput {
   /// A point with λ_N > 0 is active where ⟨λ_N − ε_N ĝ⟩ > 0 (node_to_surface), gaps up to
   /// λ_N/ε_N included; a point with λ_N = 0 is evaluated exactly as without multipliers.
   std::span<const double> multipliers = {};
+  /// Smoothing δ ≥ 0 of the normal law (penetration.hpp, node_to_surface): 0 is the Macaulay
+  /// bracket; δ > 0 makes points with g < λ_N/ε_N + δ active.
+  double smoothing = 0.0;
 };
 
 /// Evaluates every slave point: closest point over its candidate facets (ties: face before edge

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <hypercontact/obstacle.hpp>
+#include <hypercontact/penetration.hpp>
 
 namespace hypercontact {
 
@@ -48,9 +49,13 @@ struct FrictionResult {
 ///   Slip:  K_T = A [μ m ⊗ ∂p_N/∂x + μ p_N/|t_trial| (I − m ⊗ m) T].
 /// Open (g > 0): everything zero; the caller then stores t_old = 0.
 /// μ = 0: r_T = 0 and K_T = 0; state Open if g > 0, else Slip with t = 0 and Δs = t_trial/ε_T.
-/// Throws std::invalid_argument if A < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, or any input is not finite.
+/// With smoothing δ > 0, p_N = ε_N P(g) (the C¹ penetration of penetration.hpp), active where
+/// g < δ, and ∂p_N/∂x = ε_N P'(g) n.
+/// Throws std::invalid_argument if A < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, δ < 0, or any input is not
+/// finite.
 FrictionResult coulomb_friction(const ObstacleProjection& p, const Eigen::Vector3d& x,
                                 const Eigen::Vector3d& xi_old, const Eigen::Vector3d& t_old,
-                                double area, double eps_n, double eps_t, double mu);
+                                double area, double eps_n, double eps_t, double mu,
+                                double smoothing = 0.0);
 
 }  // namespace hypercontact

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <hypercontact/facet_projection.hpp>
+#include <hypercontact/penetration.hpp>
 #include <span>
 
 namespace hypercontact {
@@ -71,20 +72,27 @@ struct SurfaceContact {
 ///   pressure p_N (reported as such; open: 0).
 /// Off the face with r = 0 (the point exactly on an edge or vertex of the facet) ∇ĝ = Pᵀ n and
 /// ∇²ĝ = 0 (ĝ is not differentiable there). Throws std::invalid_argument if λ_N < 0 or not finite.
+///
+/// Smoothing δ > 0 (penetration.hpp): the pressure is p_N = ε_N P(ĝ − λ_N/ε_N) with the C¹
+/// penetration P, active where ĝ < λ_N/ε_N + δ, energy W = w ε_N Q(ĝ − λ_N/ε_N),
+///   residual R = −w p_N ∇ĝ,   tangent K = −w (dp_N/dĝ) ∇ĝ ∇ĝᵀ − w p_N ∇²ĝ
+/// (dp_N/dĝ = ε_N P' ∈ [−ε_N, 0]; the augmented formulas above with ε_N → −dp_N/dĝ).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
-                               double w, double eps_n, double touch = 0.0, double lambda = 0.0);
+                               double w, double eps_n, double touch = 0.0, double lambda = 0.0,
+                               double smoothing = 0.0);
 
 /// The same, projecting x_s onto the facet first (project_to_facet).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, double w, double eps_n,
-                               double lambda = 0.0);
+                               double lambda = 0.0, double smoothing = 0.0);
 
 /// The element energy W defined above (projecting x_s onto the facet first); closed for
 /// g ≤ touch as node_to_surface; with λ_N > 0 the augmented W = w ⟨λ_N − ε_N ĝ⟩² / (2 ε_N).
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                               const NodeCoordinates& master, double w, double eps_n,
-                              double touch = 0.0, double lambda = 0.0);
+                              double touch = 0.0, double lambda = 0.0,
+                              double smoothing = 0.0);
 
 /// The closest of several candidate facets to a slave point (narrow phase).
 struct ClosestFacet {

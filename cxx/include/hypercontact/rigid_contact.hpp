@@ -20,13 +20,14 @@ struct RigidContactNode {
 /// the penalty acts on the shifted gap g̃_i = g_i − λ_i/ε_N: contact_i = normal_penalty with
 /// gap g̃_i, so p_N,i = ⟨λ_i − ε_N g_i⟩, r_i = A_i ε_N g̃_i n_i and K_i = A_i ε_N (n_i ⊗ n_i +
 /// g̃_i ∂n_i/∂x) (λ is held fixed during a Newton solve; its Uzawa update is the caller's).
-/// projection_i keeps the true gap g_i.
+/// projection_i keeps the true gap g_i. smoothing: the band δ of normal_penalty (0: none).
 /// x: n × 3 row-major; area: n; multipliers: n or empty.
 /// Throws std::invalid_argument on inconsistent sizes or bad parameters, and
 /// std::runtime_error naming the node if a coordinate is not finite.
 std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                                      std::span<const double> x,
                                                      std::span<const double> area, double eps_n,
-                                                     std::span<const double> multipliers = {});
+                                                     std::span<const double> multipliers = {},
+                                                     double smoothing = 0.0);
 
 }  // namespace hypercontact

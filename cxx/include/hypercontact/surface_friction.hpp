@@ -67,6 +67,8 @@ struct SurfaceFriction {
 /// pressure p_N = λ_N − ε_N g, the point is open unless p_N > 0 (so a small positive gap can
 /// stick or slip), dp_N = −ε_N dg as above (node_to_surface, given λ_N, is active wherever this
 /// is: off the face its ĝ is ≥ g when g > 0).
+/// Smoothing δ > 0: p_N = ε_N P(g − λ_N/ε_N) and dp_N = ε_N P' dg (penetration.hpp), active where
+/// g < λ_N/ε_N + δ, as node_to_surface.
 /// Throws std::invalid_argument if w < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, λ_N < 0, sizes are
 /// inconsistent, any input is not finite, the projection is inconsistent or a facet is
 /// degenerate; std::runtime_error as node_to_surface at a centre of curvature. Never returns NaN.
@@ -74,13 +76,13 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
                                  const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
-                                 double mu, double lambda = 0.0);
+                                 double mu, double lambda = 0.0, double smoothing = 0.0);
 
 /// The same, projecting x_s onto the current facet first (project_to_facet).
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const NodeCoordinates& old_master,
                                  const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old,
                                  double w, double eps_n, double eps_t, double mu,
-                                 double lambda = 0.0);
+                                 double lambda = 0.0, double smoothing = 0.0);
 
 }  // namespace hypercontact
