@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   python3-dolfinx libdolfinx-dev petsc-dev python3-petsc4py python3-mpi4py
   python3-gmsh python3-meshio python3-matplotlib python3-pytest python3-scipy python3-h5py python3-venv
-  libeigen3-dev pybind11-dev python3-pybind11 libgtest-dev libopenblas0-pthread
+  libeigen3-dev libnanoflann-dev pybind11-dev python3-pybind11 libgtest-dev libopenblas0-pthread
+  python3-pil
   python3-setuptools python3-wheel cmake g++ make pkg-config openmpi-bin
 )
 missing=()

@@ -95,6 +95,23 @@ def node_coordinates(V):
     return V.tabulate_dof_coordinates()[:, :3]
 
 
+def perturb_coordinates(mesh, amplitude):
+    """Move every mesh node by a pseudo-random vector in [−a, a]³, a = amplitude × the
+    smallest cell's smallest side; the vector depends on the node's input (gmsh) index only,
+    so it is the same on any number of ranks and on every run."""
+    x = mesh.geometry.x
+    dofmap = mesh.geometry.dofmap
+    local = np.inf
+    if num_owned_cells(mesh):
+        extent = np.ptp(x[dofmap.array.reshape(-1, len(dofmap.links(0)))], axis=1)
+        local = float(np.where(extent > 0, extent, np.inf).min())
+    a = amplitude * mesh.comm.allreduce(local, op=MPI.MIN)
+    index = np.asarray(mesh.geometry.input_global_indices, dtype=np.float64)[:, None]
+    phase = index * np.array([12.9898, 78.233, 37.719]) + np.array([0.5, 1.5, 2.5])
+    unit = np.modf(np.abs(np.sin(phase)) * 43758.5453)[0]  # in [0, 1), a fixed function of the index
+    x[:, :3] += a * (2.0 * unit - 1.0)
+
+
 def facet_integration_measure(mesh, facet_tags, quadrature_degree=None, rule=None):
     md = {}
     if quadrature_degree is not None:

@@ -13,6 +13,7 @@ from mpi4py import MPI
 
 from . import _cpp
 from . import _dolfinx as dfx
+from . import penalty
 
 
 def nodal_areas(V, facet_tags, tag):
@@ -61,6 +62,7 @@ class RigidContact(UzawaMultipliers):
         self.spec = spec
         self.name = spec["name"]
         self.eps_n = float(spec["eps_n"])
+        self.smoothing = penalty.smoothing_band(spec, V, facet_tags, [surface_tag])
         self.comm = V.mesh.comm
         area = nodal_areas(V, facet_tags, surface_tag)
         self.nodes = np.flatnonzero(area > 0.0).astype(np.int32)
@@ -90,18 +92,18 @@ class RigidContact(UzawaMultipliers):
     def add_residual(self, u, b_local):
         self.state = _cpp.assemble_rigid_residual(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, b_local,
-            self.multipliers)
+            self.multipliers, self.smoothing)
 
     def add_tangent(self, u, A):
         _cpp.assemble_rigid_tangent(
-            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A, self.multipliers)
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A, self.multipliers, self.smoothing)
 
     def evaluate(self, u):
         """Gap, pressure and force of this rank's slave nodes, no assembly."""
         scratch = np.zeros(u.x.array.size)
         return _cpp.assemble_rigid_residual(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, scratch,
-            self.multipliers)
+            self.multipliers, self.smoothing)
 
     def max_penetration(self, u):
         """Largest penetration ⟨−g⟩ over all slave nodes (all ranks)."""
@@ -110,10 +112,10 @@ class RigidContact(UzawaMultipliers):
         return self.comm.allreduce(local, op=MPI.MAX)
 
     def active_set_signature(self):
-        """(number of closed nodes, checksum of their global indices) at the
-        last residual evaluation, summed over ranks: a change of the active
+        """(number of active nodes: closed, or in the smoothing band with a
+        pressure; checksum of their global indices) at the last residual evaluation, summed over ranks: a change of the active
         set changes the signature."""
-        closed = self.nodes[np.asarray(self.state.gap) <= 0.0]
+        closed = self.nodes[(np.asarray(self.state.gap) <= 0.0) | (np.asarray(self.state.pressure) > 0.0)]
         local = (len(closed), int(self.global_nodes[closed].sum()))
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
 

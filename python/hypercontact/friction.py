@@ -97,7 +97,7 @@ class FrictionalRigidContact(FrictionAccounting, RigidContact):
     def _friction(self, u, b_local):
         return _cpp.assemble_rigid_friction_residual(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.eps_t, self.mu,
-            self._xi_now(), self.t_old, self.dofs, b_local, self.multipliers)
+            self._xi_now(), self.t_old, self.dofs, b_local, self.multipliers, self.smoothing)
 
     def add_residual(self, u, b_local):
         super().add_residual(u, b_local)
@@ -107,7 +107,7 @@ class FrictionalRigidContact(FrictionAccounting, RigidContact):
         super().add_tangent(u, A)
         _cpp.assemble_rigid_friction_tangent(
             self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.eps_t, self.mu,
-            self._xi_now(), self.t_old, self.dofs, A, self.multipliers)
+            self._xi_now(), self.t_old, self.dofs, A, self.multipliers, self.smoothing)
 
     def friction_state(self, u):
         """Traction, slip increment, dissipation and stick/slip of this

@@ -56,6 +56,16 @@ def layer_thickness(V, facet_tags, tag):
     return volume / area
 
 
+def smoothing_band(spec, V, facet_tags, tags):
+    """The band δ = smoothing × h of the smoothed normal law (C++ penetration.hpp), h the
+    thinnest first element layer under the slave surfaces ``tags``; 0 when the contact's
+    ``smoothing`` is 0 (the paper's sharp ⟨−g⟩)."""
+    factor = float(spec.get("smoothing", 0.0))
+    if factor == 0.0:
+        return 0.0
+    return factor * min(layer_thickness(V, facet_tags, t) for t in tags)
+
+
 def automatic_penalty(factor, law, params, V, facet_tags, tag):
     """(ε_N, M, h) for a slave surface (see the module docstring)."""
     M = p_wave_modulus(law, params)

@@ -167,18 +167,22 @@ def rigid_body_modes(V, A):
     return PETSc.NullSpace().create(vectors=basis, comm=A.getComm())
 
 
-def make_snes(problem, comm, solver, prefix="hc_", frictional=False):
+def make_snes(problem, comm, solver, prefix="hc_", deformable=False):
     """A newtonls SNES with MUMPS LU by default; solver["petsc"] options
     (without prefix) override anything. Line search "auto": full Newton steps
-    ("basic"), except with friction or deformable–deformable contact
-    (``frictional``), where stick/slip switches or a changing active set on a
-    curved master make full steps cycle (measured on Hertz: a period-3 cycle)
-    and the backtracking "bt" converges."""
+    ("basic"), except with deformable–deformable contact (``deformable``), where
+    a changing active set on a curved master makes full steps cycle (measured
+    on Hertz: a period-3 cycle) and the backtracking "bt" converges. With rigid
+    obstacles and friction full steps are the robust choice: on the paper's
+    punch, bt crawls at steps of 0.1 of the Newton correction through the
+    kinks of the Coulomb cone (|R| falling by 0.9 per iteration), cuts the
+    load step back and can end on another of the frictional equilibria
+    (bench/results/robustness.md)."""
     snes = PETSc.SNES().create(comm)
     snes.setOptionsPrefix(prefix)
     defaults = {
         "snes_type": "newtonls",
-        "snes_linesearch_type": (("bt" if frictional else "basic") if solver["linesearch"] == "auto"
+        "snes_linesearch_type": (("bt" if deformable else "basic") if solver["linesearch"] == "auto"
                                  else solver["linesearch"]),
     }
     problem.linear_kind, linear = linear_solver_options(solver, problem.A.getSize()[0])

@@ -132,6 +132,9 @@ SCHEMA = {
         "grading": Key("vector", [1.0, 1.0, 1.0], GRADING),
         "file": Key("string", "", (lambda x: _path_ok(x), "a path without NUL characters, each name at most "
                                                            "255 bytes")),
+        # random node displacements of this fraction of the smallest cell's size (fixed per node):
+        # a check that results move continuously with the data, not a modelling feature
+        "perturbation": Key("number", 0.0, NON_NEGATIVE, (lambda x: x <= 1e-2, "at most 0.01")),
     },
     "material": {
         "law": Key("string", REQUIRED),
@@ -205,6 +208,9 @@ SCHEMA = {
         "enforcement": Key("string", "penalty", (lambda x: x in ("penalty", "augmented_lagrangian"),
                                                  '"penalty" or "augmented_lagrangian"')),
         "gap_tolerance": Key("number", 0.0, NON_NEGATIVE, LENGTH),
+        # the normal law's kink at g = 0 smoothed over |g| < smoothing × h (h: the first element
+        # layer's thickness); 0: the paper's sharp <-g>
+        "smoothing": Key("number", 1e-6, NON_NEGATIVE, (lambda x: x <= 0.1, "at most 0.1")),
         "max_augmentations": Key("integer", 20, (lambda x: 1 <= x <= 1000, "from 1 to 1000")),
         "mu": Key("number", 0.0, NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")),
         "eps_t": Key("number", 0.0, NON_NEGATIVE, (lambda x: x == 0 or 1e-100 <= x <= 1e100,

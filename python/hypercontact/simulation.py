@@ -123,6 +123,8 @@ class Simulation:
         on each other: body, volume forms, constraints, loads, contacts."""
         sc = self.scene
         self.body = self._build_body(sc["mesh"])
+        if sc["mesh"]["perturbation"] > 0:
+            dfx.perturb_coordinates(self.body.mesh, sc["mesh"]["perturbation"])
         R, J, u_unknown, v_unknown, mat_desc, self.stress = self._build_volume(law)
         self.bcs, constrained = self._build_constraints()
         R, J = self._add_loads(R, J, u_unknown, v_unknown)
@@ -544,8 +546,7 @@ class Simulation:
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
         self.snes = make_snes(self.problem, self.comm, self.scene["solver"],
-                              frictional=any(c["mu"] > 0 or c["obstacle"] == "surface"
-                                             for c in self.scene["contact"]))
+                              deformable=any(c["obstacle"] == "surface" for c in self.scene["contact"]))
         self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0

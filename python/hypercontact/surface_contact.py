@@ -187,6 +187,7 @@ class SurfaceContact(UzawaMultipliers):
         # Augmented Lagrangian: one pressure λ_N per slave point of this rank, held fixed in a
         # Newton solve and updated between solves (Uzawa); committed with the step, restored on a
         # cut-back. It belongs to the slave point: a new facet or a rebuilt pairing keeps it.
+        self.smoothing = penalty.smoothing_band(spec, V, facet_tags, slave_tags)
         self.augmented = spec.get("enforcement", "penalty") == "augmented_lagrangian"
         self.multipliers = np.zeros(len(self.point_area)) if self.augmented else np.zeros(0)
         self.multipliers_committed = self.multipliers.copy()
@@ -276,13 +277,13 @@ class SurfaceContact(UzawaMultipliers):
                 self.edge_neighbour, offsets, cand, self.eps_n, self.dofs)
 
     def add_residual_global(self, u, b):
-        self.state = _cpp.assemble_surface_residual(*self._args(u), b, multipliers=self.multipliers)
+        self.state = _cpp.assemble_surface_residual(*self._args(u), b, multipliers=self.multipliers, smoothing=self.smoothing)
 
     def add_tangent(self, u, A):
-        _cpp.assemble_surface_tangent(*self._args(u), A, multipliers=self.multipliers)
+        _cpp.assemble_surface_tangent(*self._args(u), A, multipliers=self.multipliers, smoothing=self.smoothing)
 
     def evaluate(self, u):
-        return _cpp.evaluate_surface_contact(*self._args(u), multipliers=self.multipliers)
+        return _cpp.evaluate_surface_contact(*self._args(u), multipliers=self.multipliers, smoothing=self.smoothing)
 
     # --- augmented Lagrangian ------------------------------------------------
     def max_penetration(self, u):
