@@ -480,6 +480,19 @@ class Simulation:
         for c in self.contacts:
             c.set_load_factor(lam)
 
+    def _refuse_inverted(self, x, Du, lam):
+        """Continuation: a converged step (x = x0 + Du) whose state has det F
+        ≤ 0 somewhere is undone (x, λ as before) and fails, naming the element."""
+        x.copy(self.w.vector)
+        dfx.update_ghosts(self.w)
+        self.sync_displacement()
+        with self.timers("inversion check"):
+            inverted = self.inversion_check()
+        if inverted is not None:
+            x.axpy(-1.0, Du)
+            self.set_load_factor(lam)
+            raise ContinuationFailure(f"{INVERTED_ELEMENT}, {describe_inverted(inverted)}")
+
     def _attempt(self, step, lam, dlam, attempt):
         """One attempt at the load step λ → λ + Δλ: the Newton solve, solved
         again while a deformable contact's pairing grows, the augmented
@@ -801,20 +814,22 @@ class Simulation:
                 Du, dlam, its, norms = continuation_step(
                     bordered, constraint, x, lam, du_prev, self.set_load_factor,
                     sv["rtol"], sv["atol"], sv["max_it"])
+                self._refuse_inverted(x, Du, lam)
             except ContinuationFailure as err:
                 x.copy(self.w.vector)  # the failed iterates passed through the unknown
                 dfx.update_ghosts(self.w)
                 self.sync_displacement()
-                cuts += 1
-                constraint.scale(0.5)
-                self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
-                too_small = abs(constraint.size) < st["min"] * abs(size0)
-                if cuts > st["max_cutbacks"] or too_small:
-                    why = ("its size fell below steps.min × the first step's" if too_small
-                           else f"after {cuts - 1} cut-backs")
+                too_small = 0.5 * abs(constraint.size) < st["min"] * abs(size0)
+                if cuts >= st["max_cutbacks"] or too_small:
+                    self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); no cut-back left")
+                    why = ("its size would fall below steps.min × the first step's" if too_small
+                           else f"after {cuts} cut-back{'s' * (cuts != 1)}")
                     raise StepFailure(
                         f"{constraint.name} step from λ = {lam:.6g} did not converge, {why} ({err}); "
                         f"{len(writer.steps)} converged step(s) are in {out_dir}") from None
+                cuts += 1
+                constraint.scale(0.5)
+                self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
                 continue
             cuts = 0
             lam += dlam
