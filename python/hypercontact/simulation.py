@@ -88,8 +88,9 @@ def flip_story(contacts, histories, u, comm, top=TOP_FLIPPERS):
     for i, c in enumerate(contacts):
         s = np.array([h[i] for h in histories]) if len(histories) > 1 else np.zeros((1, 0), np.int8)
         before, after = s[:-1], s[1:]
-        flips = {"open_closed": (before > 0) != (after > 0), "stick_slip": (before > 0) & (after > 0) & (before != after)}
-        per_iteration += np.array([flips["open_closed"].sum(axis=1), flips["stick_slip"].sum(axis=1)], dtype=np.int64)
+        flips = {"open_closed": (before > 0) != (after > 0),
+                 "stick_slip": (before > 0) & (after > 0) & (before != after)}
+        per_iteration += np.array([f.sum(axis=1) for f in flips.values()], dtype=np.int64)
         reference, current = c.point_coordinates(u)  # collective for deformable masters
         for kind, f in flips.items():
             counts = f.sum(axis=0)
