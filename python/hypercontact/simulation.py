@@ -54,20 +54,25 @@ class InversionCheck:
 
     def __call__(self):
         """None, or {"cell": input index, "centroid": reference midpoint,
-        "min_J": J} of the cell with the smallest J ≤ 0. Collective;
-        non-finite values (a NaN iterate) are left out."""
+        "min_J": J} of the cell with the smallest J ≤ 0 (of cells whose J
+        ties to 1e-9, the lowest input index: the same cell whatever the
+        rounding or the number of ranks). Collective; non-finite values (a
+        NaN iterate) are left out."""
         if self.expression is None:
             F = ufl.Identity(3) + ufl.grad(self.u)
             self.expression = dfx.fem.Expression(ufl.det(F), dfx.quadrature_points(self.mesh, self.degree))
         J = dfx.eval_on_owned_cells(self.expression, self.mesh)
-        per_cell = np.where(np.isfinite(J), J, np.inf).min(axis=1) if J.size else np.array([np.inf])
-        cell = int(np.argmin(per_cell))
-        min_J, owner = self.comm.allreduce((float(per_cell[cell]), self.comm.rank), op=MPI.MINLOC)
+        per_cell = np.where(np.isfinite(J), J, np.inf).min(axis=1)
+        min_J = self.comm.allreduce(float(per_cell.min()) if len(per_cell) else np.inf, op=MPI.MIN)
         if not min_J <= 0.0:
             return None
-        where = dfx.cell_description(self.mesh, cell) if self.comm.rank == owner else None
-        index, centroid = self.comm.bcast(where, root=owner)
-        return {"cell": index, "centroid": [float(v) for v in centroid], "min_J": min_J}
+        cells = np.flatnonzero(per_cell <= min_J + 1e-9 * abs(min_J))
+        index = {int(dfx.cell_description(self.mesh, c)[0]): int(c) for c in cells}
+        first, owner = self.comm.allreduce((min(index, default=np.iinfo(np.int64).max), self.comm.rank), op=MPI.MINLOC)
+        cell = index.get(first)
+        where = (dfx.cell_description(self.mesh, cell)[1], float(per_cell[cell])) if self.comm.rank == owner else None
+        centroid, J_cell = self.comm.bcast(where, root=owner)
+        return {"cell": first, "centroid": [float(v) for v in centroid], "min_J": J_cell}
 
 
 def describe_inverted(element):
