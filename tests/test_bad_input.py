@@ -4,6 +4,7 @@ import csv
 import json
 import re
 
+import numpy as np
 import pytest
 from conftest import ROOT, quiet
 from mpi4py import MPI
@@ -67,22 +68,78 @@ def test_user_law_that_raises(tmp_path, capsys):
     assert "c must be positive" in capsys.readouterr().err
 
 
-def test_failed_step_keeps_converged_steps(out_dir):
-    """Steps that grow too fast with too few Newton iterations allowed and no
-    cut-back: the run stops with a clear message after some converged steps."""
-    sc = scene.load(PUNCH, ["mesh.n=4", "mesh.m=2", f"output.dir={out_dir}", "steps.initial=0.01",
-                            "steps.min=0.001", "steps.max=1.0", "steps.growth=20", "steps.max_cutbacks=0",
-                            "solver.max_it=4"])
-    sim = Simulation(sc, MPI.COMM_WORLD, log=quiet)
-    with pytest.raises(StepFailure, match=r"did not converge after 0 cut-backs") as failure:
+def fail_at(step, attempts=None):
+    """A fail_attempt hook: every attempt at load step ``step`` fails (or
+    only those numbered in ``attempts``)."""
+    return lambda k, lam, dlam, attempt: k == step and (attempts is None or attempt in attempts)
+
+
+def failing_punch(out_dir, overrides, fail_attempt, scene_file=PUNCH, log=quiet):
+    sc = scene.load(scene_file, ["mesh.n=4", "mesh.m=2", f"output.dir={out_dir}", *overrides])
+    sim = Simulation(sc, MPI.COMM_WORLD, log=log, fail_attempt=fail_attempt)
+    with pytest.raises(StepFailure) as failure:
         sim.run()
-    m = re.search(r"from λ = ([0-9.e-]+) .* (\d+) converged step", str(failure.value))
-    lam_failed, converged = float(m.group(1)), int(m.group(2))
-    assert converged >= 1 and 0 < lam_failed < 1
+    summary = json.loads((out_dir / "summary.json").read_text()) if MPI.COMM_WORLD.rank == 0 else None
+    return str(failure.value), summary
+
+
+@pytest.mark.mpi
+def test_failed_step_keeps_converged_steps(out_dir):
+    """Step 3 (from λ = 0.25) is made to fail, with no cut-back allowed: the
+    run stops with a clear message, the two converged steps on disk."""
+    message, summary = failing_punch(out_dir, ["steps.max_cutbacks=0"], fail_at(3))
+    assert re.search(r"load step from λ = 0.25 did not converge after 0 cut-backs .* 2 converged step", message)
     if MPI.COMM_WORLD.rank == 0:
-        summary = json.loads((out_dir / "summary.json").read_text())
-        assert summary["status"] == "failed" and "did not converge" in summary["message"]
+        assert summary["status"] == "failed" and summary["message"] == message
         rows = list(csv.DictReader(open(out_dir / "curves.csv")))
-        assert len(rows) == converged == len(summary["steps"])
-        assert float(rows[-1]["load_factor"]) == pytest.approx(lam_failed)
+        assert len(rows) == 2 == len(summary["steps"])
+        assert float(rows[-1]["load_factor"]) == pytest.approx(0.25)
         assert (out_dir / "fields.h5").stat().st_size > 0
+        [failed] = summary["failed_attempts"]
+        assert failed["step"] == 3 and failed["outcome"] == "stopped"
+
+
+@pytest.mark.mpi
+def test_message_counts_the_cut_backs_of_the_log(out_dir):
+    """Every attempt at step 2 fails: two cut-backs are logged, the message
+    says two, and summary.json has the three failed attempts."""
+    messages = []
+    message, summary = failing_punch(out_dir, ["steps.max_cutbacks=2"], fail_at(2), log=messages.append)
+    logged = [m for m in messages if "failed (FORCED_FAILURE" in m]
+    assert len(logged) == 3 and sum("cut back to" in m for m in logged) == 2 and "no cut-back left" in logged[-1]
+    assert "after 2 cut-backs (last Δλ = 0.0375, reason FORCED_FAILURE)" in message
+    if MPI.COMM_WORLD.rank == 0:
+        attempts = summary["failed_attempts"]
+        assert [a["attempt"] for a in attempts] == [0, 1, 2]
+        assert [a["outcome"] for a in attempts] == ["cut back", "cut back", "stopped"]
+        assert [a["dlam"] for a in attempts] == pytest.approx([0.15, 0.075, 0.0375])
+
+
+@pytest.mark.mpi
+def test_failed_attempt_leaves_its_story_in_the_summary(out_dir):
+    """The first step of the punch with friction on the base, made to fail
+    after its Newton solve: summary.json tells λ, Δλ, the reasons, the
+    residual norm of every iterate, and the base's points that flipped most
+    (open/closed and stick/slip), inside the plate."""
+    _, summary = failing_punch(out_dir, ["mesh.m=1", "steps.max_cutbacks=0", "output.xdmf=false"], fail_at(1),
+                               scene_file=ROOT / "scenes" / "punch_mu0_1.toml")
+    if MPI.COMM_WORLD.rank == 0:
+        [story] = summary["failed_attempts"]
+        assert (story["step"], story["attempt"], story["load_factor"]) == (1, 0, 0.0)
+        assert story["dlam"] == pytest.approx(0.1)
+        assert story["reason"] == "FORCED_FAILURE" and story["snes_reason"].startswith("CONVERGED_")
+        its = story["newton_iterations"]
+        assert its >= 2 and len(story["residual_norms"]) == its + 1 and len(story["update_norms"]) == its
+        assert len(story["open_closed_flips_per_iteration"]) == len(story["stick_slip_flips_per_iteration"]) == its
+        assert story["residual_norms"][-1] < 1e-6 * story["residual_norms"][0]
+        assert story["active_set_changes"] >= 1 and story["stick_slip_changes"] >= 1
+        for kind in ("open_closed", "stick_slip"):
+            flips = story[f"most_{kind}_flips"]
+            assert 1 <= len(flips) <= 5 and sum(story[f"{kind}_flips_per_iteration"]) >= flips[0]["flips"]
+            assert [f["flips"] for f in flips] == sorted((f["flips"] for f in flips), reverse=True)
+            for f in flips:
+                assert f["contact"] == "base" and f["flips"] >= 1
+                assert np.all(np.array(f["point"]) >= -1e-9) and np.all(np.array(f["point"]) <= [40, 40, 10])
+                assert abs(f["point"][2]) < 1e-9  # the base's points are on z = 0
+                assert np.linalg.norm(np.subtract(f["current"], f["point"])) < 1.0
+        assert "inverted_element" not in story

@@ -1,10 +1,13 @@
 """A Newton iterate that inverts elements (J ≤ 0) makes the residual NaN:
 the step is cut back, never a NaN in the results."""
 import csv
+import json
+import re
 
 import h5py
 import numpy as np
 import pytest
+import ufl
 
 from mpi4py import MPI
 
@@ -16,7 +19,9 @@ from test_block_compression import PARAMS, block_scene
 EPS = 1e4
 
 
-def squeeze(out, d, max_it=25):
+def squeeze(out, d, max_it=25, law=None):
+    """The block pressed by d in one step (at most 4 cut-backs); ``law``: a
+    ψ(F, **block parameters) instead of the scene's Mooney–Rivlin."""
     sc = block_scene(out)
     sc["solver"]["max_it"] = max_it
     sc["steps"] = {"initial": 1.0, "max": 1.0, "max_cutbacks": 4}
@@ -25,7 +30,7 @@ def squeeze(out, d, max_it=25):
     for c in sc["contact"]:
         c["eps_n"] = EPS
     messages = []
-    sim = Simulation(scene.load(sc), MPI.COMM_WORLD, log=messages.append)
+    sim = Simulation(scene.load(sc), MPI.COMM_WORLD, law=law, log=messages.append)
     return sim, messages
 
 
@@ -43,7 +48,8 @@ def test_inverting_step_is_cut_back_and_recovers(out_dir):
     the step is halved and the run ends on the closed-form state."""
     sim, messages = squeeze(out_dir, 0.7)
     writer = sim.run()
-    assert any("DIVERGED_FNORM_NAN" in m for m in messages), messages
+    # the NaN residual came from an inverted element of the last iterate: the log names it
+    assert any("DIVERGED_FNORM_NAN" in m and "inverted element: cell" in m for m in messages), messages
     assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
     _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
     assert sim.contacts[0].force(sim.u)[2] == pytest.approx(P3, rel=1e-6)
@@ -62,3 +68,37 @@ def test_impossible_squeeze_stops_with_a_diagnosis(out_dir):
     if MPI.COMM_WORLD.rank == 0:
         n, finite = all_finite(out_dir)
         assert finite
+
+
+def hooke(F, alpha1, alpha2, K, i2):
+    """Linear elasticity in the displacement gradient H = F − I (the block's
+    parameters): finite for det F ≤ 0, so SNES converges to inverted states."""
+    H = F - ufl.Identity(3)
+    return alpha1 * ufl.inner(H, H) + K / 2 * ufl.tr(H) ** 2
+
+
+@pytest.mark.mpi
+def test_converged_inverted_state_is_refused_naming_the_element(out_dir):
+    """A law defined for J ≤ 0 and the top plane driven 1.5 through the unit
+    block: beyond λ ≈ 2/3 Newton converges to states with inverted
+    elements. They are refused (INVERTED_ELEMENT, cut back), and the run
+    stops with a message naming an element of the block, as summary.json does."""
+    sim, messages = squeeze(out_dir, 1.5, law=hooke)
+    with pytest.raises(StepFailure, match="reason INVERTED_ELEMENT; inverted element: cell") as failure:
+        sim.run()
+    m = re.search(r"inverted element: cell (\d+) at \(([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\), min J = (\S+)\)",
+                  str(failure.value))
+    cell, centroid, min_J = int(m.group(1)), np.array([float(m.group(i)) for i in (2, 3, 4)]), float(m.group(5))
+    assert 0 <= cell < 8 and np.all((centroid > 0) & (centroid < 1)) and min_J <= 0
+    assert any("INVERTED_ELEMENT" in m and "cut back to" in m for m in messages)
+    assert 2 / 3 - 0.05 < sim._lam < 2 / 3  # the last converged state: the top plane just above the base
+    if MPI.COMM_WORLD.rank == 0:
+        summary = json.loads((out_dir / "summary.json").read_text())
+        last = summary["failed_attempts"][-1]
+        assert last["outcome"] == "stopped" and last["reason"] == "INVERTED_ELEMENT"
+        assert last["snes_reason"].startswith("CONVERGED_")
+        assert last["inverted_element"]["cell"] == cell and last["inverted_element"]["min_J"] <= 0
+        assert np.allclose(last["inverted_element"]["centroid"], centroid, atol=1e-3)
+        assert all(a["reason"] == "INVERTED_ELEMENT" for a in summary["failed_attempts"])
+        n, finite = all_finite(out_dir)
+        assert n == len(summary["steps"]) >= 1 and finite

@@ -100,18 +100,18 @@ def test_pictures_of_a_one_step_run(out_dir, monkeypatch):
 
 @pytest.mark.mpi
 def test_pictures_of_a_failed_run(out_dir):
-    """A run that stops after some converged steps still draws both pictures."""
+    """A run that stops after some converged steps (step 3 is made to fail)
+    still draws both pictures, of the last converged step."""
     sc = scene.load(ROOT / "scenes" / "punch.toml",
-                    ["mesh.n=4", "mesh.m=2", f"output.dir={out_dir}", "steps.initial=0.01", "steps.min=0.001",
-                     "steps.max=1.0", "steps.growth=20", "steps.max_cutbacks=0", "solver.max_it=4"])
-    sim = Simulation(sc, MPI.COMM_WORLD, log=quiet)
-    with pytest.raises(StepFailure):
+                    ["mesh.n=4", "mesh.m=2", f"output.dir={out_dir}", "steps.max_cutbacks=0"])
+    sim = Simulation(sc, MPI.COMM_WORLD, log=quiet, fail_attempt=lambda step, lam, dlam, attempt: step == 3)
+    with pytest.raises(StepFailure, match="from λ = 0.25 did not converge"):
         sim.run()
     if MPI.COMM_WORLD.rank == 0:
         summary = json.loads((out_dir / "summary.json").read_text())
-        assert summary["status"] == "failed" and summary["steps"]
+        assert summary["status"] == "failed" and len(summary["steps"]) == 2
         assert summary["pictures"]["curves.png"] == "punch_fz, base_fz against punch_displacement"
-        assert summary["pictures"]["deformed.png"].startswith("|u| on the deformed boundary")
+        assert summary["pictures"]["deformed.png"].startswith("|u| on the deformed boundary at step 2")
         assert_png(out_dir / "curves.png")
         assert_png(out_dir / "deformed.png")
 

@@ -232,3 +232,26 @@ def gmsh_arrays(model):
 
 def num_owned_cells(mesh):
     return mesh.topology.index_map(mesh.topology.dim).size_local
+
+
+def quadrature_points(mesh, degree):
+    """Reference points of the default quadrature rule of degree ``degree``
+    on the mesh's cells (the rule FFCx takes for ``quadrature_degree``)."""
+    import basix
+
+    cell = basix.cell.string_to_type(mesh.topology.cell_type.name)
+    return basix.make_quadrature(cell, int(degree))[0]
+
+
+def eval_on_owned_cells(expression, mesh):
+    """Values of a compiled fem.Expression on this rank's owned cells:
+    (owned cells, points × value size)."""
+    return expression.eval(np.arange(num_owned_cells(mesh), dtype=np.int32))
+
+
+def cell_description(mesh, cell):
+    """(input index, reference midpoint) of a process-local cell: the index
+    the cell had in the mesh as built or read, the same on any number of ranks."""
+    tdim = mesh.topology.dim
+    midpoint = dolfinx.mesh.compute_midpoints(mesh, tdim, np.array([cell], dtype=np.int32))[0]
+    return int(mesh.topology.original_cell_index[cell]), midpoint

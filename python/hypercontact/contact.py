@@ -119,6 +119,15 @@ class RigidContact(UzawaMultipliers):
         local = (len(closed), int(self.global_nodes[closed].sum()))
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
 
+    def point_status(self):
+        """Per slave node of this rank at the last residual evaluation: 0 open,
+        2 closed (a frictionless closed node slides: the SLIP of friction.py)."""
+        return np.where(np.asarray(self.state.gap) <= 0.0, 2, 0).astype(np.int8)
+
+    def point_coordinates(self, u):
+        """(reference, current) coordinates of this rank's slave nodes."""
+        return self.X, self.current_coordinates(u)
+
     def force(self, u):
         """Total force the obstacle exerts on the body (summed over ranks)."""
         return self.comm.allreduce(np.asarray(self.evaluate(u).force), op=MPI.SUM)

@@ -54,6 +54,10 @@ class FrictionAccounting:
         local = np.array([len(stick), len(slip), stick.sum(), slip.sum(), (slip * slip).sum()], dtype=np.int64)
         return tuple(self.comm.allreduce(local, op=MPI.SUM).tolist())
 
+    def point_status(self):
+        """Per slave point of this rank: 0 open, 1 stick, 2 slip at the last residual evaluation."""
+        return self.iterate_status().astype(np.int8)
+
     def stick_slip_counts(self):
         """(sticking, slipping) slave points at the last converged step, all ranks."""
         if self.committed is None:

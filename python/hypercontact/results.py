@@ -16,8 +16,21 @@
   the numbers of sticking and slipping nodes, and the totals over all
   frictional contacts.
 - ``summary.json``: the scene as it ran, the effects built, status, every
-  step's Newton history and the wall-time split; rewritten after each step,
-  so a failed run keeps every converged step on disk.
+  step's Newton history and the wall-time split; rewritten after each step
+  and each failed attempt, so a failed run keeps every converged step on
+  disk, and why it stopped: ``failed_attempts`` has one entry per failed
+  Newton attempt of a load-control step (each cut-back, and the last one,
+  ``"outcome": "stopped"``, of a run that stopped): the step and attempt
+  numbers, λ and Δλ, the verdict (``reason``: the SNES reason, or
+  FORCED_FAILURE, INVERTED_ELEMENT, AUGMENTATION_LIMIT) and ``snes_reason``,
+  the residual norms of its last solve (one per iterate: iterations + 1),
+  the Newton-update norms, the numbers of iterations in which the active
+  set and the stick/slip set changed, per iteration the numbers of slave
+  points that flipped open ↔ closed and stick ↔ slip, the points that
+  flipped most (``most_open_closed_flips``, ``most_stick_slip_flips``:
+  contact, flips, reference ``point`` and ``current`` coordinates at the
+  last iterate) and, when its last iterate has det F ≤ 0 somewhere,
+  ``inverted_element`` (input cell index, reference centroid, min J).
 - ``curves.png``, ``deformed.png``: drawn at the end of a run that converged
   at least one step (completed or not; :mod:`hypercontact.pictures`): the
   contact forces (or pressures) against the first contact's displacement (or
@@ -104,6 +117,7 @@ class ResultsWriter:
         self.factor = scene["output"]["symmetry_factor"]
         self.steps = list(previous["steps"]) if previous else []
         self.limit_points = list(previous["limit_points"]) if previous else []
+        self.failed_attempts = list(previous.get("failed_attempts", [])) if previous else []
         self.status, self.message = "running", ""
         self.started = time.perf_counter()
         self.rank0 = comm.rank == 0
@@ -224,6 +238,12 @@ class ResultsWriter:
         self._u_last = self.u.x.array.copy()
         self.write_summary(timers)
         return row
+
+    def record_failed_attempt(self, story, timers):
+        """Keep a failed attempt's story (see the module's summary.json) and
+        rewrite the summary with it. Collective."""
+        self.failed_attempts.append(story)
+        self.write_summary(timers)
 
     def _write_fields(self, t, fields):
         if self._frames_on_disk > 0:
@@ -442,7 +462,7 @@ class ResultsWriter:
                                "sum_ranks": self.comm.allreduce(peak_mb, op=MPI.SUM)},
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
             "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
-            "steps": self.steps, "scene": self.scene,
+            "steps": self.steps, "failed_attempts": self.failed_attempts, "scene": self.scene,
         }
         if self.rank0:
             tmp = self.out / "summary.json.tmp"

@@ -34,6 +34,83 @@ class StepFailure(RuntimeError):
     """A load step did not converge after the allowed cut-backs."""
 
 
+#: reason of an attempt made to fail by Simulation(fail_attempt=...)
+FORCED_FAILURE = "FORCED_FAILURE"
+#: reason of a solve SNES called converged with det F ≤ 0 at a volume quadrature point
+INVERTED_ELEMENT = "INVERTED_ELEMENT"
+#: slave points listed per kind of flip in a failed attempt's story
+TOP_FLIPPERS = 5
+
+
+class InversionCheck:
+    """The smallest J = det F over the volume quadrature points of every
+    cell (all ranks), at the displacement u: None if it is > 0, else where.
+    The kernel is compiled at the first call (FFCx JIT)."""
+
+    def __init__(self, u, quadrature_degree):
+        self.u, self.degree = u, quadrature_degree
+        self.mesh, self.comm = u.function_space.mesh, u.function_space.mesh.comm
+        self.expression = None
+
+    def __call__(self):
+        """None, or {"cell": input index, "centroid": reference midpoint,
+        "min_J": J} of the cell with the smallest J ≤ 0 (of cells whose J
+        ties to 1e-9, the lowest input index: the same cell whatever the
+        rounding or the number of ranks). Collective; non-finite values (a
+        NaN iterate) are left out."""
+        if self.expression is None:
+            F = ufl.Identity(3) + ufl.grad(self.u)
+            self.expression = dfx.fem.Expression(ufl.det(F), dfx.quadrature_points(self.mesh, self.degree))
+        J = dfx.eval_on_owned_cells(self.expression, self.mesh)
+        per_cell = np.where(np.isfinite(J), J, np.inf).min(axis=1)
+        min_J = self.comm.allreduce(float(per_cell.min()) if len(per_cell) else np.inf, op=MPI.MIN)
+        if not min_J <= 0.0:
+            return None
+        cells = np.flatnonzero(per_cell <= min_J + 1e-9 * abs(min_J))
+        index = {int(dfx.cell_description(self.mesh, c)[0]): int(c) for c in cells}
+        first, owner = self.comm.allreduce((min(index, default=np.iinfo(np.int64).max), self.comm.rank), op=MPI.MINLOC)
+        cell = index.get(first)
+        where = (dfx.cell_description(self.mesh, cell)[1], float(per_cell[cell])) if self.comm.rank == owner else None
+        centroid, J_cell = self.comm.bcast(where, root=owner)
+        return {"cell": first, "centroid": [float(v) for v in centroid], "min_J": J_cell}
+
+
+def describe_inverted(element):
+    """'inverted element: cell N at (x, y, z), min J = j' of InversionCheck's answer."""
+    x = ", ".join(f"{v:.4g}" for v in element["centroid"])
+    return f"inverted element: cell {element['cell']} at ({x}), min J = {element['min_J']:.3g}"
+
+
+def flip_story(contacts, histories, u, comm, top=TOP_FLIPPERS):
+    """What the slave points did during one Newton solve, from their status
+    at each iterate (``histories[k][i]``: contact i's point_status() at
+    iterate k; 0 open, 1 stick, 2 slip or closed without friction): per
+    iteration the number of points (all ranks) that changed open ↔ closed
+    and stick ↔ slip, and the ``top`` points that did so most often, with
+    their reference and current coordinates. Collective."""
+    per_iteration = np.zeros((2, max(len(histories) - 1, 0)), dtype=np.int64)
+    found = {"open_closed": [], "stick_slip": []}
+    for i, c in enumerate(contacts):
+        s = np.array([h[i] for h in histories]) if len(histories) > 1 else np.zeros((1, 0), np.int8)
+        before, after = s[:-1], s[1:]
+        flips = {"open_closed": (before > 0) != (after > 0),
+                 "stick_slip": (before > 0) & (after > 0) & (before != after)}
+        per_iteration += np.array([f.sum(axis=1) for f in flips.values()], dtype=np.int64)
+        reference, current = c.point_coordinates(u)  # collective for deformable masters
+        for kind, f in flips.items():
+            counts = f.sum(axis=0)
+            found[kind] += [(int(counts[p]), c.name, reference[p].tolist(), current[p].tolist())
+                            for p in np.argsort(-counts, kind="stable")[:top] if counts[p] > 0]
+    comm.Allreduce(MPI.IN_PLACE, per_iteration, op=MPI.SUM)
+    story = {"open_closed_flips_per_iteration": per_iteration[0].tolist(),
+             "stick_slip_flips_per_iteration": per_iteration[1].tolist()}
+    for kind, local in found.items():
+        every = sorted((e for part in comm.allgather(local) for e in part), key=lambda e: (-e[0], e[1], e[2]))
+        story[f"most_{kind}_flips"] = [{"contact": name, "flips": n, "point": point, "current": now}
+                                       for n, name, point, now in every[:top]]
+    return story
+
+
 def load_user_law(spec):
     """'python:path/to/file.py:function' → the function ψ(F, **params)."""
     try:
@@ -111,8 +188,20 @@ class Probe:
 class Simulation:
     """Everything one scene needs, built once; :meth:`run` solves it."""
 
-    def __init__(self, scene, comm=MPI.COMM_WORLD, law=None, log=None):
+    def __init__(self, scene, comm=MPI.COMM_WORLD, law=None, log=None, fail_attempt=None):
+        """``fail_attempt``: None, or a callable ``fail_attempt(step, lam,
+        dlam, attempt) -> bool`` asked once per attempt at a load-control
+        step, after its Newton solve(s): ``step`` is the number the step
+        would get (1 for the first), ``lam`` the load factor it starts from,
+        ``dlam`` the increment tried, ``attempt`` 0 for the first try and k
+        after k cut-backs of this step. True makes a converged attempt fail
+        as if SNES had diverged (reason FORCED_FAILURE): its state is
+        discarded, its story goes to summary.json's ``failed_attempts`` and
+        the step is cut back (or the run stops). For tests and what-if
+        studies of the step control, independent of where rounding makes a
+        solve fail; the answers of all ranks are or-ed."""
         self.scene, self.comm = scene, comm
+        self.fail_attempt = fail_attempt
         self.log = log if log is not None else (print if comm.rank == 0 else (lambda *a, **k: None))
         self.timers = Timers()
         with self.timers("setup"):
@@ -153,9 +242,12 @@ class Simulation:
         size = self.comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in sc["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, self.timers)
+        self.inversion_check = InversionCheck(self.u, sc["discretisation"]["quadrature_degree"])
+        self.inverted = None  # InversionCheck's answer at the end of the last solve
+        self.last_snes_reason = None
         self.snes = None  # built by the load-control driver only
         self.bordered = None  # built by the continuation driver only
-        self.active_sets, self.stick_slip_sets, self.update_norms = [], [], []
+        self._reset_iteration_history()
         n_rigid, n_p = sum(c["obstacle"] != "surface" for c in sc["contact"]), len(sc["pressure"])
         n_t, n_b, n_m = len(sc["traction"]), len(sc["body_force"]), len(self._bc_motion)
         mus = sorted({c["mu"] for c in sc["contact"] if c["mu"] > 0})
@@ -338,15 +430,22 @@ class Simulation:
         dw = ufl.TrialFunction(self.w.function_space)
         return R + self.load_factor * self.q_form, J + self.load_factor * ufl.derivative(self.q_form, self.w, dw)
 
+    def _reset_iteration_history(self):
+        """Empty what _monitor collects per Newton iterate."""
+        self.active_sets, self.stick_slip_sets, self.update_norms, self.point_states = [], [], [], []
+
     def _monitor(self, snes, its, norm):
-        """Per Newton iteration: the norm of the Newton correction and the
-        contact active set of the current iterate."""
+        """Per Newton iteration: the norm of the Newton correction, the
+        contact active set and stick/slip signatures of the current iterate,
+        and each contact's per-point status (this rank's points: a failed
+        attempt's story counts their flips)."""
         if its == 0:
-            self.active_sets, self.stick_slip_sets, self.update_norms = [], [], []
+            self._reset_iteration_history()
         else:
             self.update_norms.append(snes.getSolutionUpdate().norm())
         self.active_sets.append([c.active_set_signature() for c in self.contacts])
         self.stick_slip_sets.append([c.stick_slip_signature() for c in self.contacts if isinstance(c, FRICTIONAL)])
+        self.point_states.append([c.point_status() for c in self.contacts])
 
     def _eta(self, progress):
         """'  ~N s left', extrapolating the time since this run (or resume)
@@ -369,7 +468,7 @@ class Simulation:
                     arrays[f"xi_{c.name}"], arrays[f"t_{c.name}"] = c.xi, c.t_old
                     arrays.update({f"{k}_{c.name}": v for k, v in c.history_arrays().items()})
             state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
-                     "friction": friction}
+                     "failed_attempts": writer.failed_attempts, "friction": friction}
             self.checkpoint.save(state, w=self.w.x.array, **arrays)
 
     def sync_displacement(self):
@@ -388,6 +487,57 @@ class Simulation:
             value.value = lam * motion
         for c in self.contacts:
             c.set_load_factor(lam)
+
+    def _refuse_inverted(self, x, Du, lam):
+        """Continuation: a converged step (x = x0 + Du) whose state has det F
+        ≤ 0 somewhere is undone (x, λ as before) and fails, naming the element."""
+        x.copy(self.w.vector)
+        dfx.update_ghosts(self.w)
+        self.sync_displacement()
+        with self.timers("inversion check"):
+            inverted = self.inversion_check()
+        if inverted is not None:
+            x.axpy(-1.0, Du)
+            self.set_load_factor(lam)
+            raise ContinuationFailure(f"{INVERTED_ELEMENT}, {describe_inverted(inverted)}")
+
+    def _attempt(self, step, lam, dlam, attempt):
+        """One attempt at the load step λ → λ + Δλ: the Newton solve, solved
+        again while a deformable contact's pairing grows, the augmented
+        Lagrangian's updates, then the fail_attempt hook. Returns
+        (converged, Newton iterations, last solve's norms, reason)."""
+        self.set_load_factor(lam + dlam)
+        self.update_pairing(fresh=True)
+        ok, its, norms, reason = self.solve_step()
+        for _ in range(5 if ok else 0):
+            # a point found a master facet outside the pattern: solve again with it
+            if not self.update_pairing(fresh=False):
+                break
+            ok, more, norms, reason = self.solve_step()
+            its += more
+            if not ok:
+                break
+        if ok:
+            ok, more, norms, reason = self._augment(norms, reason)
+            its += more
+        forced = self.fail_attempt is not None and bool(self.fail_attempt(step, lam, dlam, attempt))
+        if self.comm.allreduce(forced, op=MPI.LOR) and ok:
+            ok, reason = False, FORCED_FAILURE
+        return ok, its, norms, reason
+
+    def _failure_story(self, step, lam, dlam, attempt, reason, norms):
+        """What a failed attempt did, for summary.json: its last Newton
+        solve's SNES reason, residual norms (one per iterate), active-set and
+        stick/slip changes, the points that flipped most, and the inverted
+        element of its last iterate, if any. Collective."""
+        story = {"step": step, "attempt": attempt, "load_factor": lam, "dlam": dlam, "reason": reason,
+                 "snes_reason": self.last_snes_reason, "newton_iterations": self.snes.getIterationNumber(),
+                 "residual_norms": list(norms), "update_norms": list(self.update_norms),
+                 "active_set_changes": self.active_set_changes(), "stick_slip_changes": self.stick_slip_changes()}
+        story.update(flip_story(self.contacts, self.point_states, self.u, self.comm))
+        if self.inverted is not None:
+            story["inverted_element"] = self.inverted
+        return story
 
     def _augment(self, norms, reason):
         """Augmented Lagrangian (Uzawa) around the Newton solve of a step:
@@ -447,21 +597,32 @@ class Simulation:
         return changed
 
     def solve_step(self):
-        """One Newton solve at the current load factor: (converged, its, norms, reason)."""
+        """One Newton solve at the current load factor: (converged, its, norms,
+        reason). A solve SNES calls converged whose state has det F ≤ 0 at a
+        volume quadrature point fails with reason INVERTED_ELEMENT. After
+        the solve the unknown holds its end state (converged) or the last
+        iterate SNES evaluated (failed), self.inverted says which element of
+        it is inverted (or None) and self.last_snes_reason what SNES said."""
         x = self.problem.x
         self.w.vector.copy(x)
+        self._reset_iteration_history()
         self.snes.solve(None, x)
         self.linear_iterations.append(self.snes.getLinearSolveIterations())
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
+        self.last_snes_reason = name = converged_reason_name(reason)
         # every rank must take the same branch: a NaN on one rank fails the step on all
         finite = self.comm.allreduce(int(np.all(np.isfinite(x.array))), op=MPI.MIN)
         converged = reason > 0 and bool(finite)
         if converged:
             x.copy(self.w.vector)
             dfx.update_ghosts(self.w)
-            self.sync_displacement()
-        return converged, self.snes.getIterationNumber(), norms, converged_reason_name(reason)
+        self.sync_displacement()
+        with self.timers("inversion check"):
+            self.inverted = self.inversion_check()
+        if converged and self.inverted is not None:
+            converged, name = False, INVERTED_ELEMENT
+        return converged, self.snes.getIterationNumber(), norms, name
 
     def active_set_changes(self):
         """Newton iterations of the last solve in which some contact's active
@@ -561,20 +722,7 @@ class Simulation:
 
         while lam < 1.0 - 1e-12:
             dlam = min(dlam, 1.0 - lam)
-            self.set_load_factor(lam + dlam)
-            self.update_pairing(fresh=True)
-            ok, its, norms, reason = self.solve_step()
-            for _ in range(5 if ok else 0):
-                # a point found a master facet outside the pattern: solve again with it
-                if not self.update_pairing(fresh=False):
-                    break
-                ok, more, norms, reason = self.solve_step()
-                its += more
-                if not ok:
-                    break
-            if ok:
-                ok, more, norms, reason = self._augment(norms, reason)
-                its += more
+            ok, its, norms, reason = self._attempt(len(writer.steps) + 1, lam, dlam, cuts)
             if ok:
                 lam += dlam
                 self._lam = lam
@@ -603,25 +751,31 @@ class Simulation:
                     dlam, streak = min(dlam * st["growth"], regrow_to, st["max"]), 0
                 self._save_checkpoint(writer, {"lam": lam, "dlam": dlam, "streak": streak, "regrow_to": regrow_to})
                 continue
+            stop = cuts >= st["max_cutbacks"] or 0.5 * dlam < st["min"]
+            story = self._failure_story(len(writer.steps) + 1, lam, dlam, cuts, reason, norms)
+            story["outcome"] = "stopped" if stop else "cut back"
+            writer.record_failed_attempt(story, split())
             self.w.x.array[:] = u_saved
+            self.sync_displacement()
             for c in self.contacts:
                 if getattr(c, "augmented", False):
                     c.restore_multipliers()
+            chatter = "".join(f"; the {what} changed in {story[key]} Newton iterations (chattering)"
+                              for what, key in (("contact active set", "active_set_changes"),
+                                                ("stick/slip status", "stick_slip_changes"))
+                              if story[key] >= st["chatter_warning"])
+            where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
+            self.log(f"   step at λ = {lam:.4f} + {dlam:.3g} failed ({reason}, {its} its{chatter}{where}); "
+                     + ("no cut-back left" if stop else f"cut back to Δλ = {0.5 * dlam:.3g}"))
+            if stop:
+                raise StepFailure(
+                    f"load step from λ = {lam:.6g} did not converge after {cuts} cut-back{'s' * (cuts != 1)} "
+                    f"(last Δλ = {dlam:.3g}, reason {reason}{where}); {len(writer.steps)} converged step(s) "
+                    f"are in {out_dir} (what each failed attempt did: failed_attempts in summary.json)")
             if cuts == 0:
                 regrow_to = dlam
             cuts, streak = cuts + 1, 0
             dlam *= 0.5
-            changes, flips = self.active_set_changes(), self.stick_slip_changes()
-            chatter = "".join(f"; the {what} changed in {n} Newton iterations (chattering)"
-                              for what, n in (("contact active set", changes), ("stick/slip status", flips))
-                              if n >= st["chatter_warning"])
-            self.log(f"   step at λ = {lam:.4f} + {2 * dlam:.3g} failed ({reason}, {its} its{chatter}); "
-                     f"cut back to Δλ = {dlam:.3g}")
-            if cuts > st["max_cutbacks"] or dlam < st["min"]:
-                raise StepFailure(
-                    f"load step from λ = {lam:.6g} did not converge after {cuts - 1} cut-backs "
-                    f"(last Δλ = {2 * dlam:.3g}, SNES reason {reason}); "
-                    f"{len(writer.steps)} converged step(s) are in {out_dir}")
 
     def _continuation(self, writer, split, out_dir, state=None, arrays=None):
         """Arc-length or displacement control (see continuation.py) until the
@@ -667,20 +821,22 @@ class Simulation:
                 Du, dlam, its, norms = continuation_step(
                     bordered, constraint, x, lam, du_prev, self.set_load_factor,
                     sv["rtol"], sv["atol"], sv["max_it"])
+                self._refuse_inverted(x, Du, lam)
             except ContinuationFailure as err:
                 x.copy(self.w.vector)  # the failed iterates passed through the unknown
                 dfx.update_ghosts(self.w)
                 self.sync_displacement()
-                cuts += 1
-                constraint.scale(0.5)
-                self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
-                too_small = abs(constraint.size) < st["min"] * abs(size0)
-                if cuts > st["max_cutbacks"] or too_small:
-                    why = ("its size fell below steps.min × the first step's" if too_small
-                           else f"after {cuts - 1} cut-backs")
+                too_small = 0.5 * abs(constraint.size) < st["min"] * abs(size0)
+                if cuts >= st["max_cutbacks"] or too_small:
+                    self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); no cut-back left")
+                    why = ("its size would fall below steps.min × the first step's" if too_small
+                           else f"after {cuts} cut-back{'s' * (cuts != 1)}")
                     raise StepFailure(
                         f"{constraint.name} step from λ = {lam:.6g} did not converge, {why} ({err}); "
                         f"{len(writer.steps)} converged step(s) are in {out_dir}") from None
+                cuts += 1
+                constraint.scale(0.5)
+                self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); size halved")
                 continue
             cuts = 0
             lam += dlam

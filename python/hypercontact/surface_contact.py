@@ -305,6 +305,17 @@ class SurfaceContact(UzawaMultipliers):
         local = (len(closed), int(closed.sum() + facets.sum()))
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
 
+    def point_status(self):
+        """Per slave point of this rank at the last residual evaluation: 0
+        open, 2 active (closed; a frictionless point slides)."""
+        status = np.zeros(len(self.point_area), np.int8)
+        status[self._active()] = 2
+        return status
+
+    def point_coordinates(self, u):
+        """(reference, current) coordinates of this rank's slave points. Collective."""
+        return self.slave_points(self.X), self.slave_points(self.current_coordinates(u))
+
     def force(self, u):
         """Total force the master surface exerts on the slave body."""
         return self.comm.allreduce(np.asarray(self.evaluate(u).force), op=MPI.SUM)
