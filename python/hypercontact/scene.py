@@ -79,15 +79,12 @@ BUILTIN_LAWS = {
     "mooney_rivlin": {"alpha1": None, "alpha2": None, "K": None, "i2": "usual", "volumetric": "quadratic"},
     "neo_hookean": {"mu": None, "K": None, "volumetric": "quadratic"},
 }
-#: Values of the parameter ``volumetric`` (hypercontact.forms.materials.VOLUMETRIC):
-#: the volumetric energy Ψ0(J) and what it is.
-VOLUMETRIC = {
-    "quadratic": "K/2 (J − 1)², the paper's",
-    "log": "K/2 (ln J)²",
-    "log_quadratic": "K/4 (J² − 1 − 2 ln J)",
-}
+#: Values of the parameter ``volumetric``, the volumetric energy Ψ0(J)
+#: (hypercontact.forms.materials.VOLUMETRIC): K/2 (J − 1)² (the paper's),
+#: K/2 (ln J)², K/4 (J² − 1 − 2 ln J).
+VOLUMETRIC = ("quadratic", "log", "log_quadratic")
 #: The string parameters of the built-in laws and their values.
-STRING_PARAMETERS = {"i2": ("usual", "paper"), "volumetric": tuple(VOLUMETRIC)}
+STRING_PARAMETERS = {"i2": ("usual", "paper"), "volumetric": VOLUMETRIC}
 #: The surfaces of the built-in builders, each with the axis of its normal if
 #: it is a plane x, y or z = const (None for the spheres).
 BUILDER_SURFACES = {
