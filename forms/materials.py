@@ -9,6 +9,12 @@ A user's own law is just another function with the same signature,
 
 Isochoric split (SPEC §3): F̂ = J^(-1/3) F, B̂ = F̂ F̂ᵀ, with the invariants
 of B̂ computed from C = FᵀF (same values, and cheaper forms).
+
+Volumetric part Ψ0(J), chosen by the parameter ``volumetric`` (VOLUMETRIC):
+the paper's "quadratic" K/2 (J − 1)² (the default), or "log" K/2 (ln J)² or
+"log_quadratic" K/4 (J² − 1 − 2 ln J), which grow without bound as J → 0 and
+so resist the inversion of elements. All three have Ψ0(1) = Ψ0'(1) = 0 and
+Ψ0''(1) = K: the same small-strain bulk modulus.
 """
 import ufl
 
@@ -29,9 +35,28 @@ def _isochoric_invariants(F):
     return J, I1, I2_usual, trC2_hat
 
 
-def volumetric_penalty(J, K):
-    """Ψ0(J) = K/2 (J − 1)², the paper's penalty on volume change (21)."""
-    return 0.5 * K * (J - 1.0) ** 2
+#: Volumetric energies Ψ0(J, K) by the name of the parameter ``volumetric``.
+VOLUMETRIC = {
+    # the paper's penalty on volume change (21); bounded as J → 0
+    "quadratic": lambda J, K: 0.5 * K * (J - 1.0) ** 2,
+    # quadratic in the logarithmic (Hencky) volume strain
+    "log": lambda J, K: 0.5 * K * ufl.ln(J) ** 2,
+    # Simo–Taylor / Ogden type; convex in J
+    "log_quadratic": lambda J, K: 0.25 * K * (J**2 - 1.0 - 2.0 * ufl.ln(J)),
+}
+
+
+def volumetric_penalty(J, K, volumetric="quadratic"):
+    """Ψ0(J) of the given kind (VOLUMETRIC); "quadratic" is the paper's K/2 (J − 1)² (21)."""
+    if volumetric not in VOLUMETRIC:
+        raise ValueError(f"volumetric must be one of {', '.join(map(repr, VOLUMETRIC))}, got {volumetric!r}")
+    return VOLUMETRIC[volumetric](J, K)
+
+
+def split_volumetric(params):
+    """(isochoric parameters, K, volumetric) of a built-in law's parameters."""
+    iso = {k: v for k, v in params.items() if k not in ("K", "volumetric")}
+    return iso, params.get("K"), params.get("volumetric", "quadratic")
 
 
 def mooney_rivlin_isochoric(F, alpha1, alpha2, i2="usual"):
@@ -51,9 +76,9 @@ def mooney_rivlin_isochoric(F, alpha1, alpha2, i2="usual"):
     return alpha1 * (I1 - 3.0) + alpha2 * (I2 - 3.0)
 
 
-def mooney_rivlin(F, alpha1, alpha2, K, i2="usual"):
-    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + K/2 (J − 1)²."""
-    return mooney_rivlin_isochoric(F, alpha1, alpha2, i2) + volumetric_penalty(ufl.det(F), K)
+def mooney_rivlin(F, alpha1, alpha2, K, i2="usual", volumetric="quadratic"):
+    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + Ψ0(J)."""
+    return mooney_rivlin_isochoric(F, alpha1, alpha2, i2) + volumetric_penalty(ufl.det(F), K, volumetric)
 
 
 def neo_hookean_isochoric(F, mu):
@@ -62,9 +87,9 @@ def neo_hookean_isochoric(F, mu):
     return 0.5 * mu * (I1 - 3.0)
 
 
-def neo_hookean(F, mu, K):
-    """Neo-Hookean with the same split: μ/2 (Ī1 − 3) + K/2 (J − 1)²."""
-    return neo_hookean_isochoric(F, mu) + volumetric_penalty(ufl.det(F), K)
+def neo_hookean(F, mu, K, volumetric="quadratic"):
+    """Neo-Hookean with the same split: μ/2 (Ī1 − 3) + Ψ0(J)."""
+    return neo_hookean_isochoric(F, mu) + volumetric_penalty(ufl.det(F), K, volumetric)
 
 
 def shear_modulus(law, params):
@@ -80,12 +105,14 @@ def shear_modulus(law, params):
 #: Built-in laws by scene name: function and its parameter names with defaults
 #: (None = required).
 LAWS = {
-    "mooney_rivlin": (mooney_rivlin, {"alpha1": None, "alpha2": None, "K": None, "i2": "usual"}),
-    "neo_hookean": (neo_hookean, {"mu": None, "K": None}),
+    "mooney_rivlin": (mooney_rivlin, {"alpha1": None, "alpha2": None, "K": None, "i2": "usual",
+                                      "volumetric": "quadratic"}),
+    "neo_hookean": (neo_hookean, {"mu": None, "K": None, "volumetric": "quadratic"}),
 }
 
-#: Isochoric parts of the built-in laws, whose volumetric part is K/2 (J − 1)²:
-#: what the selective reduced integration and mixed formulations need.
+#: Isochoric parts of the built-in laws (their volumetric part is Ψ0(J),
+#: split_volumetric): what the selective reduced integration and mixed
+#: formulations need.
 ISOCHORIC = {
     "mooney_rivlin": mooney_rivlin_isochoric,
     "neo_hookean": neo_hookean_isochoric,

@@ -5,12 +5,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# Every package the build (CMakeLists.txt), the tests, a run and bench/ use;
+# CMake names the one that is missing if this list is not installed.
 PACKAGES=(
-  python3-dolfinx libdolfinx-dev petsc-dev python3-petsc4py python3-mpi4py
-  python3-gmsh python3-meshio python3-matplotlib python3-pytest python3-scipy python3-h5py python3-venv
-  libeigen3-dev libnanoflann-dev pybind11-dev python3-pybind11 libgtest-dev libopenblas0-pthread
-  python3-pil
-  python3-setuptools python3-wheel cmake g++ make pkg-config openmpi-bin
+  # build: compilers and tools, C++ headers and libraries
+  cmake g++ make pkg-config
+  libnanoflann-dev libeigen3-dev petsc-dev libopenmpi-dev pybind11-dev libgtest-dev libdolfinx-dev
+  # Python: FEniCSx 0.5.2 (with ufl, basix, ffcx, cffi), PETSc and MPI bindings, pybind11 for the extension
+  python3-dolfinx python3-petsc4py python3-mpi4py python3-pybind11 python3-numpy
+  # a run: meshes, results and pictures
+  python3-gmsh python3-meshio python3-h5py python3-matplotlib python3-scipy python3-pil
+  # MPI runs (mpirun), the BLAS, tests and the virtual environment
+  openmpi-bin libopenblas0-pthread python3-pytest python3-venv python3-setuptools python3-wheel
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -62,3 +62,34 @@ def test_ctrl_c_stops_cleanly_and_resume_completes(tmp_path):
     assert resumed.returncode == 0, resumed.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["status"] == "completed" and len(summary["steps"]) > done
+
+
+TINY_PUNCH = ["--set", "mesh.n=2", "--set", "mesh.m=1", "--set", "output.xdmf=false"]
+
+
+def test_cold_form_cache_says_compiling_without_the_compiler_lines(tmp_path):
+    """An empty FFCx cache: the C compiler's INFO lines (setuptools logs each
+    command on the root logger) stay off the console; one line says that the
+    forms are being compiled and how long it took. A second run, warm, says
+    nothing about compiling."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMI", "PMIX"))}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
+    args = CLI + ["run", str(ROOT / "scenes" / "punch.toml"), "--out", str(tmp_path / "out"), *TINY_PUNCH]
+    cold = subprocess.run(args, capture_output=True, text=True, timeout=600, env=env)
+    assert cold.returncode == 0, cold.stderr
+    assert "INFO" not in cold.stdout + cold.stderr and "gcc" not in cold.stdout + cold.stderr
+    first = cold.stdout.splitlines()[0]
+    assert first.startswith("hypercontact: compiling the forms (first run, cached afterwards)… ")
+    assert first.endswith(" s") and first.split()[-2].isdigit()
+    warm = subprocess.run(args, capture_output=True, text=True, timeout=600, env=env)
+    assert warm.returncode == 0, warm.stderr
+    assert "compiling" not in warm.stdout and "INFO" not in warm.stdout + warm.stderr
+
+
+def test_warnings_still_reach_the_console():
+    """Only the compiler's chatter is dropped: a library's warning shows."""
+    code = ("import logging; from hypercontact import cli; cli.console_logging(cli.Console()); "
+            "logging.getLogger('somelib').warning('act on this'); logging.getLogger().info('not this')")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert "act on this" in result.stderr and "not this" not in result.stdout + result.stderr

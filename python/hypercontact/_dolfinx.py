@@ -2,6 +2,10 @@
 
 A move to a newer FEniCSx should touch this file only.
 """
+import functools
+import logging
+import time
+
 import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
@@ -9,9 +13,63 @@ from petsc4py import PETSc
 import dolfinx
 import dolfinx.fem.petsc as fem_petsc
 import dolfinx.io
+import dolfinx.jit
 import ufl
 from dolfinx import fem
 from dolfinx.io import gmshio
+
+
+class _CompilerLog(logging.Filter):
+    """FFCx's JIT builds a form, element or expression that is not in the
+    cache (~/.cache/fenics, or $XDG_CACHE_HOME/fenics) with cffi and
+    setuptools, which log every step and compiler command at INFO on the
+    root logger, and FFCx's import gave the root logger a console handler
+    (logging.basicConfig). On the root logger this filter drops those
+    records (warnings pass) and, at the first one naming an FFCx module
+    (libffcx_*) within a JIT call, tells the listener that a compilation
+    is under way."""
+
+    TOOLS = ("distutils", "setuptools", "cffi")
+
+    def __init__(self):
+        super().__init__()
+        self.listener, self.seen = None, False
+
+    def filter(self, record):
+        if record.levelno >= logging.WARNING or not any(t in record.pathname for t in self.TOOLS):
+            return True
+        if not self.seen and "libffcx_" in record.getMessage():
+            self.seen = True
+            if self.listener is not None:
+                self.listener.compiling()
+        return False
+
+
+_compiler_log = _CompilerLog()
+logging.getLogger().addFilter(_compiler_log)
+
+
+def _timed_jit(jit):
+    @functools.wraps(jit)
+    def timed(*args, **kwargs):
+        _compiler_log.seen, start = False, time.perf_counter()
+        try:
+            return jit(*args, **kwargs)
+        finally:
+            if _compiler_log.seen and _compiler_log.listener is not None:
+                _compiler_log.listener.compiled(time.perf_counter() - start)
+
+    return timed
+
+
+dolfinx.jit.ffcx_jit = _timed_jit(dolfinx.jit.ffcx_jit)
+
+
+def watch_jit_compilation(listener):
+    """Tell ``listener.compiling()`` when FFCx's JIT starts the C compiler
+    and ``listener.compiled(seconds)`` when that JIT call returns (None:
+    tell no one). The compiler's log never reaches the console."""
+    _compiler_log.listener = listener
 
 
 def mesh_from_gmsh(model, comm):

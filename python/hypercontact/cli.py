@@ -9,6 +9,7 @@ steps are on disk), 130 interrupted (Ctrl-C; converged steps are on disk,
 and ``--resume`` continues from the last of them).
 """
 import argparse
+import logging
 import os
 import shutil
 import signal
@@ -20,6 +21,46 @@ from . import scene as scene_mod
 
 #: The built-in scenes (the repository's scenes/ folder).
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+class Console:
+    """What a run prints on rank 0: the simulation's lines, and once per
+    burst of JIT compilations (a cold form cache) "compiling the forms …"
+    closed with the seconds they took when the next line is printed. The
+    stream is the stdout of its creation (FFCx redirects sys.stdout while
+    it compiles)."""
+
+    def __init__(self, rank=0):
+        self.rank, self.seconds, self.open, self.out = rank, 0.0, False, sys.stdout
+
+    def compiling(self):
+        if self.rank == 0 and not self.open:
+            print("hypercontact: compiling the forms (first run, cached afterwards)…", end="", file=self.out,
+                  flush=True)
+        self.open = True
+
+    def compiled(self, seconds):
+        self.seconds += seconds
+
+    def close(self):
+        if self.open and self.rank == 0:
+            print(f" {self.seconds:.0f} s", file=self.out, flush=True)
+        self.open, self.seconds = False, 0.0
+
+    def say(self, *args, **kwargs):
+        self.close()
+        if self.rank == 0:
+            print(*args, file=self.out, **kwargs)
+
+
+def console_logging(console):
+    """Only warnings of the libraries on the console; the C compiler's lines
+    of a cold FFCx cache become the console's "compiling the forms" notice."""
+    from . import _dolfinx
+
+    logging.getLogger().setLevel(logging.WARNING)
+    _dolfinx.watch_jit_compilation(console)
+    return console
 
 
 def _parser():
@@ -53,9 +94,7 @@ def _scene_path(name):
 
 
 def _study(args):
-    import logging
-
-    logging.getLogger().setLevel(logging.WARNING)
+    console = console_logging(Console())
     from . import study as study_mod
 
     path = Path(args.study)
@@ -63,11 +102,11 @@ def _study(args):
         path = SCENES / "studies" / f"{args.study}.toml"
     out = args.out or f"results/study_{path.stem}"
     try:
-        _, ref = study_mod.run_study(path, out)
+        _, ref = study_mod.run_study(path, out, log=console.say)
     except (scene_mod.SceneError, ValueError) as e:
         print(f"hypercontact: {e}", file=sys.stderr)
         return 2
-    print(f"hypercontact: study written to {out} (study.csv, study.md, study.png)")
+    console.say(f"hypercontact: study written to {out} (study.csv, study.md, study.png)")
     return 0
 
 
@@ -111,12 +150,10 @@ def main(argv=None):
     launched = any(v in os.environ for v in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"))
     if args.command == "run" and args.np > 1 and not launched:
         _under_mpirun(argv, args.np)  # before MPI is initialised here: a singleton cannot exec mpirun
-    import logging
-
-    logging.getLogger().setLevel(logging.WARNING)  # FFCx's JIT logs every compilation at INFO
     from mpi4py import MPI
 
     comm = MPI.COMM_WORLD
+    console = Console(comm.rank)
     err = sys.stderr if comm.rank == 0 else open(os.devnull, "w")
     try:
         sc = scene_mod.load(_scene_path(args.scene), args.overrides)
@@ -124,6 +161,7 @@ def main(argv=None):
             if comm.rank == 0:
                 print(f"{args.scene}: valid")
             return 0
+        console_logging(console)
         from petsc4py import PETSc
 
         from .simulation import Simulation, StepFailure
@@ -131,28 +169,30 @@ def main(argv=None):
         # MPI and PETSc install their own SIGINT handlers; Ctrl-C must reach
         # Python as KeyboardInterrupt so the run stops cleanly.
         signal.signal(signal.SIGINT, signal.default_int_handler)
-        sim = Simulation(sc, comm)
+        sim = Simulation(sc, comm, log=console.say)
         try:
             writer = sim.run(args.out, resume=args.resume)
         except StepFailure as failure:
-            print(f"hypercontact: {failure}", file=err)
-            return 3
+            return _fail(console, err, f"hypercontact: {failure}", 3)
         except PETSc.Error as failure:
             # a PETSc option value that PETSc rejects only when it uses it
-            print(f"hypercontact: invalid scene: scene key 'solver.petsc': PETSc rejected one of "
-                  f"{sc['solver']['petsc']} when it used it (error code {failure.ierr}); "
-                  f"converged steps are on disk", file=err)
-            return 2
+            return _fail(console, err, f"hypercontact: invalid scene: scene key 'solver.petsc': PETSc rejected one "
+                         f"of {sc['solver']['petsc']} when it used it (error code {failure.ierr}); "
+                         f"converged steps are on disk", 2)
         except KeyboardInterrupt:
-            print("hypercontact: interrupted; converged steps are on disk (--resume continues)", file=err)
-            return 130
-        if comm.rank == 0:
-            print(f"hypercontact: completed {len(writer.steps)} steps; results in {writer.out}")
+            return _fail(console, err, "hypercontact: interrupted; converged steps are on disk (--resume continues)", 130)
+        console.say(f"hypercontact: completed {len(writer.steps)} steps; results in {writer.out}")
         return 0
     except (scene_mod.SceneError, FileNotFoundError, ValueError) as e:
         prefix = "invalid scene: " if isinstance(e, scene_mod.SceneError) else ""
-        print(f"hypercontact: {prefix}{e}", file=err)
-        return 2
+        return _fail(console, err, f"hypercontact: {prefix}{e}", 2)
+
+
+def _fail(console, err, message, code):
+    """Close an open compiling line, print the message on err, return the exit code."""
+    console.close()
+    print(message, file=err)
+    return code
 
 
 if __name__ == "__main__":

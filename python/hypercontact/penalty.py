@@ -21,7 +21,8 @@ from . import _dolfinx as dfx
 
 
 def p_wave_modulus(law, params):
-    """K + 4/3 μ of a built-in law at small strain."""
+    """K + 4/3 μ of a built-in law at small strain (every volumetric energy,
+    materials.VOLUMETRIC, has Ψ0''(1) = K: the same M whichever it is)."""
     if law == "neo_hookean":
         mu = params["mu"]
     elif law == "mooney_rivlin":

@@ -76,9 +76,15 @@ MAX_QUADRATURE_DEGREE = 20
 #: The built-in laws (hypercontact.forms.materials.LAWS) and their parameters
 #: (None = required); kept here so that checking a scene needs no UFL.
 BUILTIN_LAWS = {
-    "mooney_rivlin": {"alpha1": None, "alpha2": None, "K": None, "i2": "usual"},
-    "neo_hookean": {"mu": None, "K": None},
+    "mooney_rivlin": {"alpha1": None, "alpha2": None, "K": None, "i2": "usual", "volumetric": "quadratic"},
+    "neo_hookean": {"mu": None, "K": None, "volumetric": "quadratic"},
 }
+#: Values of the parameter ``volumetric``, the volumetric energy Ψ0(J)
+#: (hypercontact.forms.materials.VOLUMETRIC): K/2 (J − 1)² (the paper's),
+#: K/2 (ln J)², K/4 (J² − 1 − 2 ln J).
+VOLUMETRIC = ("quadratic", "log", "log_quadratic")
+#: The string parameters of the built-in laws and their values.
+STRING_PARAMETERS = {"i2": ("usual", "paper"), "volumetric": VOLUMETRIC}
 #: The surfaces of the built-in builders, each with the axis of its normal if
 #: it is a plane x, y or z = const (None for the spheres).
 BUILDER_SURFACES = {
@@ -396,9 +402,11 @@ def _check_parameters(material, formulation, where="material"):
                 params[key] = default
         for key, value in params.items():
             path = f"{where}.parameters.{key}"
-            if key == "i2":
-                if value not in ("usual", "paper"):
-                    _fail(path, f'expected "usual" or "paper", found {_describe(value)}')
+            if key in STRING_PARAMETERS:
+                if value not in STRING_PARAMETERS[key]:
+                    *first, last = (f'"{v}"' for v in STRING_PARAMETERS[key])
+                    choices = f"{', '.join(first)} or {last}"
+                    _fail(path, f"expected {choices}, found {_describe(value)}")
             elif not _num(value):
                 _fail(path, f"expected a number, found {_describe(value)}")
             elif key == "K" and not value > 0:

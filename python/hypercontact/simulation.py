@@ -163,6 +163,8 @@ def resolve_material(mat, law=None):
     desc = name if name in materials.LAWS else f"user law {getattr(law, '__name__', name)}"
     if name == "mooney_rivlin":
         desc = f"Mooney–Rivlin ({params['i2']} I2)"
+    if name in materials.LAWS and params.get("volumetric", "quadratic") != "quadratic":
+        desc += f", volumetric {params['volumetric']}"
     return law, params, desc
 
 
@@ -322,7 +324,7 @@ class Simulation:
         if sc["contact"] and (disc["degree"] != 1 or disc["formulation"] == "mixed"):
             raise SceneError("scene key 'discretisation': contact needs the displacement or sri "
                              "formulation with degree 1")
-        iso_params = {k: v for k, v in params.items() if k != "K"}
+        iso_params, K, vol = materials.split_volumetric(params)
         qdeg = disc["quadrature_degree"]
         if disc["formulation"] == "mixed":
             if qdeg < 4:
@@ -334,14 +336,14 @@ class Simulation:
             self.V, self._u_dofs = dfx.collapse(self.w.function_space.sub(0))
             self.u = dfx.fem.Function(self.V, name="displacement")
             u, v = ufl.split(self.w)[0], ufl.split(ufl.TestFunction(self.w.function_space))[0]
-            R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
+            R, J = volume.mixed_up_forms(self.w, materials.ISOCHORIC[name], iso_params, K, qdeg, vol)
             p = ufl.split(self.w)[1]
 
             def stress(u_out):
-                """P = ∂ψ_iso/∂F + p J F⁻ᵀ with the pressure unknown p."""
+                """P = ∂ψ_iso/∂F + p J G'(J) F⁻ᵀ with the pressure unknown p."""
                 F = ufl.variable(ufl.Identity(3) + ufl.grad(u_out))
                 P_iso = ufl.diff(materials.ISOCHORIC[name](F, **iso_params), F)
-                return P_iso + p * ufl.det(F) * ufl.inv(F).T
+                return P_iso + volume.mixed_pressure_stress(F, p, K, vol)
 
             return R, J, u, v, desc + ", mixed u–p (Taylor–Hood Q2–Q1)", stress
         self.V = dfx.vector_space(mesh, disc["degree"])
@@ -350,7 +352,8 @@ class Simulation:
         if sc["body"]:
             return self._build_several_volumes(law, psi, params, desc)
         if disc["formulation"] == "sri":
-            R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, params["K"], qdeg)
+            R, J = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso_params, K, qdeg,
+                                                  volumetric=vol)
             desc += ", selective reduced integration"
         else:
             R, J = volume.displacement_forms(self.u, psi, params, qdeg)
@@ -371,9 +374,9 @@ class Simulation:
         DG0 = dfx.fem.FunctionSpace(self.body.mesh, ("DG", 0))
         for (user_law, b_psi, b_params, name, _), (region, tag) in zip(laws, self.body.regions.items()):
             if disc["formulation"] == "sri":
-                iso = {k: v for k, v in b_params.items() if k != "K"}
-                Rb, Jb = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso, b_params["K"],
-                                                        disc["quadrature_degree"], dx(tag))
+                iso, K, vol = materials.split_volumetric(b_params)
+                Rb, Jb = volume.selective_reduced_forms(self.u, materials.ISOCHORIC[name], iso, K,
+                                                        disc["quadrature_degree"], dx(tag), vol)
             else:
                 Rb, Jb = volume.displacement_forms(self.u, b_psi, b_params, disc["quadrature_degree"], dx(tag))
             R, J = (Rb, Jb) if R is None else (R + Rb, J + Jb)

@@ -65,6 +65,9 @@ _I2 = {"usual": ((2, 2 / _3, -2 / _3), (1, -4 / _3, 4 / _3)),
 def _terms(law, params):
     """(monomials [(c, m, n)], constant, K) with ψ = Σ c x^m y^n + constant + K/2 (J−1)²
     (K is None if absent: only the incompressible closed form may omit it)."""
+    if params.get("volumetric", "quadratic") != "quadratic":
+        raise ValueError(f"the 1-D sphere has the paper's volumetric energy K/2 (J − 1)² only, "
+                         f"found volumetric = {params['volumetric']!r}")
     if law == "mooney_rivlin":
         a1, a2 = params["alpha1"], params["alpha2"]
         i2 = params.get("i2", "usual")

@@ -13,6 +13,20 @@ import numpy as np
 from scipy.optimize import fsolve
 
 
+#: The volumetric energies Ψ0(J, K) (complex-safe), written independently of forms/materials.py.
+VOLUMETRIC = {
+    "quadratic": lambda J, K: 0.5 * K * (J - 1) ** 2,
+    "log": lambda J, K: 0.5 * K * np.log(J) ** 2,
+    "log_quadratic": lambda J, K: 0.25 * K * (J**2 - 1 - 2 * np.log(J)),
+}
+
+
+def neo_hookean_principal(l1, l2, l3, mu, K, volumetric="quadratic"):
+    J = l1 * l2 * l3
+    I1 = J ** (-2.0 / 3.0) * (l1**2 + l2**2 + l3**2)
+    return 0.5 * mu * (I1 - 3) + VOLUMETRIC[volumetric](J, K)
+
+
 def mooney_rivlin_principal(l1, l2, l3, alpha1, alpha2, K, i2="usual"):
     J = l1 * l2 * l3
     I1 = J ** (-2.0 / 3.0) * (l1**2 + l2**2 + l3**2)
