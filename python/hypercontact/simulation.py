@@ -1,6 +1,7 @@
 """A scene → a running simulation: build only the effects the scene names,
 then solve by incremental loading with automatic step control."""
 import importlib.util
+import inspect
 import time
 from pathlib import Path
 
@@ -149,6 +150,10 @@ def resolve_material(mat, law=None):
                              f"of {name} (expected {', '.join(expected)})")
     elif law is None:
         law = load_user_law(name)
+    else:  # a driver's law gets the scene parameters it names (the scene fills the built-in law's defaults)
+        accepted = inspect.signature(law).parameters.values()
+        if not any(a.kind == a.VAR_KEYWORD for a in accepted):
+            params = {k: v for k, v in params.items() if k in {a.name for a in accepted}}
     # Evaluate once on a symbolic F so that a broken law fails here, clearly.
     try:
         cell = ufl.hexahedron
