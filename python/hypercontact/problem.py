@@ -196,6 +196,17 @@ def make_snes(problem, comm, solver, prefix="hc_", deformable=False):
     return snes
 
 
+def set_line_search(snes, kind):
+    """Make ``kind`` the SNES's line search (through its options: petsc4py
+    3.18 has no line-search object); returns the one it had."""
+    opts = PETSc.Options()
+    key = (snes.getOptionsPrefix() or "") + "snes_linesearch_type"
+    previous = opts.getString(key, "bt")
+    opts[key] = kind
+    snes.setFromOptions()
+    return previous
+
+
 def converged_reason_name(reason):
     names = {v: k for k, v in PETSc.SNES.ConvergedReason.__dict__.items() if isinstance(v, int)}
     return names.get(reason, str(reason))

@@ -21,7 +21,7 @@ from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, Di
 from .continuation import step as continuation_step
 from . import penalty
 from .forms import loads, materials, volume
-from .problem import Problem, converged_reason_name, linear_solver_options, make_snes, residual_norms_of
+from .problem import Problem, converged_reason_name, set_line_search, linear_solver_options, make_snes, residual_norms_of
 from .results import ResultsWriter, first_piola_stress
 from .scene import SceneError
 from .timing import Timers
@@ -253,6 +253,7 @@ class Simulation:
         self.inverted = None  # InversionCheck's answer at the end of the last solve
         self.last_snes_reason = None
         self.snes = None  # built by the load-control driver only
+        self._fallback_linesearch = None  # the line search a failed solve is tried again with (solve_step)
         self.bordered = None  # built by the continuation driver only
         self._reset_iteration_history()
         n_rigid, n_p = sum(c["obstacle"] != "surface" for c in sc["contact"]), len(sc["pressure"])
@@ -606,6 +607,26 @@ class Simulation:
 
     def solve_step(self):
         """One Newton solve at the current load factor: (converged, its, norms,
+        reason). With solver.linesearch = "auto", a solve that fails with one
+        line search is tried again from the same start with the other (full
+        steps ↔ backtracking) before the step is cut back: which one converges
+        depends on the contact (full steps on the paper's punch, where
+        backtracking crawls; backtracking where full steps cycle, on Hertz or
+        the ironing die's rim). Its count includes both solves; the norms and
+        reason are the last solve's."""
+        ok, its, norms, reason = self._newton_solve()
+        fallback = self._fallback_linesearch
+        if ok or fallback is None or reason == INVERTED_ELEMENT:
+            return ok, its, norms, reason
+        primary = set_line_search(self.snes, fallback)
+        try:
+            ok, more, norms, reason = self._newton_solve()
+        finally:
+            set_line_search(self.snes, primary)
+        return ok, its + more, norms, reason
+
+    def _newton_solve(self):
+        """One SNES solve at the current load factor: (converged, its, norms,
         reason). A solve SNES calls converged whose state has det F ≤ 0 at a
         volume quadrature point fails with reason INVERTED_ELEMENT. After
         the solve the unknown holds its end state (converged) or the last
@@ -714,8 +735,10 @@ class Simulation:
     def _load_control(self, writer, split, out_dir, state=None):
         """λ: 0 → 1 in steps; Newton (SNES) per step; cut back on failure."""
         st = self.scene["steps"]
-        self.snes = make_snes(self.problem, self.comm, self.scene["solver"],
-                              deformable=any(c["obstacle"] == "surface" for c in self.scene["contact"]))
+        deformable = any(c["obstacle"] == "surface" for c in self.scene["contact"])
+        self.snes = make_snes(self.problem, self.comm, self.scene["solver"], deformable=deformable)
+        if self.scene["solver"]["linesearch"] == "auto" and self.scene["contact"]:
+            self._fallback_linesearch = "basic" if deformable else "bt"
         self.snes.setConvergenceHistory(length=self.scene["solver"]["max_it"] + 1, reset=True)
         self.snes.setMonitor(self._monitor)
         lam, dlam, cuts = 0.0, st["initial"], 0
