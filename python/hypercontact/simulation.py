@@ -614,10 +614,13 @@ class Simulation:
         backtracking crawls; backtracking where full steps cycle, on Hertz or
         the ironing die's rim). Its count includes both solves; the norms and
         reason are the last solve's."""
+        start = self.w.x.array.copy() if self._fallback_linesearch else None
         ok, its, norms, reason = self._newton_solve()
         fallback = self._fallback_linesearch
         if ok or fallback is None or reason == INVERTED_ELEMENT:
             return ok, its, norms, reason
+        self.w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
+        self.sync_displacement()
         primary = set_line_search(self.snes, fallback)
         try:
             ok, more, norms, reason = self._newton_solve()
