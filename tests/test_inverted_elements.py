@@ -19,11 +19,12 @@ from test_block_compression import PARAMS, block_scene
 EPS = 1e4
 
 
-def squeeze(out, d, max_it=25, law=None):
+def squeeze(out, d, max_it=25, law=None, linesearch="auto"):
     """The block pressed by d in one step (at most 4 cut-backs); ``law``: a
     ψ(F, **block parameters) instead of the scene's Mooney–Rivlin."""
     sc = block_scene(out)
     sc["solver"]["max_it"] = max_it
+    sc["solver"]["linesearch"] = linesearch
     sc["steps"] = {"initial": 1.0, "max": 1.0, "max_cutbacks": 4}
     sc["output"]["xdmf"] = True
     sc["contact"][0]["motion"] = [0.0, 0.0, -d]
@@ -47,9 +48,10 @@ def all_finite(out):
 
 @pytest.mark.mpi
 def test_inverting_step_is_cut_back_and_recovers(out_dir):
-    """70 % compression in one step: the first Newton iterate inverts elements;
-    the step is halved and the run ends on the closed-form state."""
-    sim, messages = squeeze(out_dir, 0.7)
+    """70 % compression in one step with full Newton steps only: the first
+    Newton iterate inverts elements; the step is halved and the run ends on
+    the closed-form state."""
+    sim, messages = squeeze(out_dir, 0.7, linesearch="basic")
     writer = sim.run()
     # the NaN residual came from an inverted element of the last iterate: the log names it
     assert any("DIVERGED_FNORM_NAN" in m and "inverted element: cell" in m for m in messages), messages
@@ -59,6 +61,22 @@ def test_inverting_step_is_cut_back_and_recovers(out_dir):
     if MPI.COMM_WORLD.rank == 0:
         n, finite = all_finite(out_dir)
         assert n == len(writer.steps) and finite
+
+
+def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir):
+    """The same squeeze with linesearch = "auto": the full-step solve goes
+    NaN at its first iterate, the backtracking solve is tried next from the
+    same start (it runs out of iterations here), and only then is the step
+    cut back; the run ends on the closed-form state."""
+    sim, messages = squeeze(out_dir, 0.7, max_it=25)
+    writer = sim.run()
+    failed = [m for m in messages if "failed" in m]
+    assert len(failed) == 1
+    its = int(re.search(r", (\d+) its", failed[0]).group(1))
+    assert its > 25  # both solves ran: 1 iterate of full steps, then 25 of bt
+    assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
+    _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
+    assert sim.contacts[0].force(sim.u)[2] == pytest.approx(P3, rel=1e-6)
 
 
 @pytest.mark.mpi
