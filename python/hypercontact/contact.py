@@ -96,7 +96,8 @@ class RigidContact(UzawaMultipliers):
 
     def add_tangent(self, u, A):
         _cpp.assemble_rigid_tangent(
-            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A, self.multipliers, self.smoothing)
+            self.obstacle, self.current_coordinates(u), self.area, self.eps_n, self.dofs, A, self.multipliers,
+            self.smoothing)
 
     def evaluate(self, u):
         """Gap, pressure and force of this rank's slave nodes, no assembly."""
@@ -115,7 +116,8 @@ class RigidContact(UzawaMultipliers):
         """(number of active nodes: closed, or in the smoothing band with a
         pressure; checksum of their global indices) at the last residual evaluation, summed over ranks: a change of the active
         set changes the signature."""
-        closed = self.nodes[(np.asarray(self.state.gap) <= 0.0) | (np.asarray(self.state.pressure) > 0.0)]
+        gap, pressure = np.asarray(self.state.gap), np.asarray(self.state.pressure)
+        closed = self.nodes[(gap <= 0.0) | (pressure > 0.0)]
         local = (len(closed), int(self.global_nodes[closed].sum()))
         return tuple(self.comm.allreduce(np.array(local, dtype=np.int64), op=MPI.SUM).tolist())
 

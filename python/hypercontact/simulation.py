@@ -21,7 +21,8 @@ from .continuation import ArcLengthConstraint, Bordered, ContinuationFailure, Di
 from .continuation import step as continuation_step
 from . import penalty
 from .forms import loads, materials, volume
-from .problem import Problem, converged_reason_name, set_line_search, linear_solver_options, make_snes, residual_norms_of
+from .problem import (Problem, converged_reason_name, linear_solver_options, make_snes, residual_norms_of,
+                      set_line_search)
 from .results import ResultsWriter, first_piola_stress
 from .scene import SceneError
 from .timing import Timers

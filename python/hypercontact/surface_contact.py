@@ -277,13 +277,16 @@ class SurfaceContact(UzawaMultipliers):
                 self.edge_neighbour, offsets, cand, self.eps_n, self.dofs)
 
     def add_residual_global(self, u, b):
-        self.state = _cpp.assemble_surface_residual(*self._args(u), b, multipliers=self.multipliers, smoothing=self.smoothing)
+        self.state = _cpp.assemble_surface_residual(*self._args(u), b, multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     def add_tangent(self, u, A):
-        _cpp.assemble_surface_tangent(*self._args(u), A, multipliers=self.multipliers, smoothing=self.smoothing)
+        _cpp.assemble_surface_tangent(*self._args(u), A, multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     def evaluate(self, u):
-        return _cpp.evaluate_surface_contact(*self._args(u), multipliers=self.multipliers, smoothing=self.smoothing)
+        return _cpp.evaluate_surface_contact(*self._args(u), multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     # --- augmented Lagrangian ------------------------------------------------
     def max_penetration(self, u):

@@ -66,15 +66,18 @@ class FrictionalSurfaceContact(FrictionAccounting, SurfaceContact):
         return self._args_at(self.current_coordinates(u))
 
     def add_residual_global(self, u, b):
-        self.state = _cpp.assemble_surface_friction_residual(*self._fargs(u), b, multipliers=self.multipliers, smoothing=self.smoothing)
+        self.state = _cpp.assemble_surface_friction_residual(*self._fargs(u), b, multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     def add_tangent(self, u, A):
-        _cpp.assemble_surface_friction_tangent(*self._fargs(u), A, multipliers=self.multipliers, smoothing=self.smoothing)
+        _cpp.assemble_surface_friction_tangent(*self._fargs(u), A, multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     def evaluate(self, u):
         """Pairing, normal and friction state at u against the history
         (``force`` is the total, normal + tangential, force on the slave body)."""
-        return _cpp.evaluate_surface_friction(*self._fargs(u), multipliers=self.multipliers, smoothing=self.smoothing)
+        return _cpp.evaluate_surface_friction(*self._fargs(u), multipliers=self.multipliers,
+            smoothing=self.smoothing)
 
     friction_state = evaluate
 
