@@ -113,9 +113,10 @@ class RigidContact(UzawaMultipliers):
         return self.comm.allreduce(local, op=MPI.MAX)
 
     def active_set_signature(self):
-        """(number of active nodes: closed, or in the smoothing band with a
-        pressure; checksum of their global indices) at the last residual evaluation, summed over ranks: a change of the active
-        set changes the signature."""
+        """(number of active nodes — closed, or in the smoothing band with a
+        pressure — and a checksum of their global indices) at the last residual
+        evaluation, summed over ranks: a change of the active set changes the
+        signature."""
         gap, pressure = np.asarray(self.state.gap), np.asarray(self.state.pressure)
         closed = self.nodes[(gap <= 0.0) | (pressure > 0.0)]
         local = (len(closed), int(self.global_nodes[closed].sum()))
