@@ -2,12 +2,11 @@
 // coordinates and central finite differences over all of them.
 #pragma once
 
-#include <Eigen/Geometry>
-#include <initializer_list>
-
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <hypercontact/facet_projection.hpp>
+#include <initializer_list>
 #include <vector>
 
 namespace hypercontact::test {
@@ -84,6 +83,35 @@ inline NodeCoordinates placed(std::initializer_list<Eigen::Vector3d> local) {
   int j = 0;
   for (const Eigen::Vector3d& p : local) x.col(j++) = test_rotation * p + test_shift;
   return x;
+}
+
+/// The facets the element tests share (placed: rotated and shifted off the axes).
+inline const NodeCoordinates flat_quad =
+    placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
+/// Non-planar: n · x_,12 ≈ 0.2, so the curvature term r·x_,12 of H matters when g ≠ 0.
+inline const NodeCoordinates warped_quad =
+    placed({{0, 0, 0.2}, {1.2, 0.1, -0.1}, {1.1, 0.9, 0.3}, {-0.1, 1, -0.2}});
+inline const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2, 1, -0.1}});
+/// The weights of a slave point that is one node.
+inline const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
+
+/// x_M(ξ) on facet m.
+inline Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
+  return m * facet_shape_functions(static_cast<int>(m.cols()), xi);
+}
+
+/// x_M(ξ) + g n(ξ): for small |g| its closest point is x_M(ξ), its gap g.
+inline Eigen::Vector3d point_at(const NodeCoordinates& m, const Eigen::Vector2d& xi, double gap) {
+  return surface_point(m, xi) + gap * facet_normal(m, xi);
+}
+
+/// One slave node as a 3 × 1 node set.
+inline NodeCoordinates single(const Eigen::Vector3d& x) { return x; }
+
+/// Outward unit normal, in the facet's tangent plane at ξ, of edge k.
+inline Eigen::Vector3d edge_outward(const NodeCoordinates& m, int k, const Eigen::Vector2d& xi) {
+  const int n = static_cast<int>(m.cols());
+  return (m.col((k + 1) % n) - m.col(k)).cross(facet_normal(m, xi)).normalized();
 }
 
 }  // namespace hypercontact::test

@@ -21,6 +21,14 @@
 namespace hypercontact {
 namespace {
 
+using test::edge_outward;
+using test::flat_quad;
+using test::one_node;
+using test::point_at;
+using test::single;
+using test::surface_point;
+using test::triangle;
+using test::warped_quad;
 using test::fd_gradient_stacked;
 using test::fd_jacobian_stacked;
 using test::relative_error;
@@ -34,31 +42,6 @@ using test::placed;
 const Eigen::Matrix3d& rotation = test::test_rotation;
 const Eigen::Vector3d& shift = test::test_shift;
 
-const NodeCoordinates flat_quad = placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
-/// Non-planar: n · x_,12 ≈ 0.2, so the curvature term r·x_,12 of H matters when g ≠ 0.
-const NodeCoordinates warped_quad =
-    placed({{0, 0, 0.2}, {1.2, 0.1, -0.1}, {1.1, 0.9, 0.3}, {-0.1, 1, -0.2}});
-const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2, 1, -0.1}});
-
-const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
-
-Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
-  return m * facet_shape_functions(static_cast<int>(m.cols()), xi);
-}
-
-/// x_M(ξ) + g n(ξ): for small |g| its closest point is x_M(ξ), its gap g.
-Eigen::Vector3d point_at(const NodeCoordinates& m, const Eigen::Vector2d& xi, double gap) {
-  return surface_point(m, xi) + gap * facet_normal(m, xi);
-}
-
-NodeCoordinates single(const Eigen::Vector3d& x) { return x; }
-
-/// Outward unit normal, in the facet's tangent plane at ξ, of edge k.
-Eigen::Vector3d edge_outward(const NodeCoordinates& m, int k, const Eigen::Vector2d& xi) {
-  const int n = static_cast<int>(m.cols());
-  const Eigen::Vector3d e = m.col((k + 1) % n) - m.col(k);
-  return e.cross(facet_normal(m, xi)).normalized();
-}
 
 /// Element data and its checks against finite differences over all 3 (ns + nm) coordinates.
 struct Element {

@@ -26,6 +26,14 @@
 namespace hypercontact {
 namespace {
 
+using test::edge_outward;
+using test::flat_quad;
+using test::one_node;
+using test::point_at;
+using test::single;
+using test::surface_point;
+using test::triangle;
+using test::warped_quad;
 using test::fd_gradient_stacked;
 using test::fd_jacobian_stacked;
 using test::placed;
@@ -40,23 +48,7 @@ constexpr double mu = 0.3;
 /// Band half-width: the FD points below are ≥ 10⁴ steps from ĝ − λ/ε_N = ±δ.
 constexpr double delta = 0.05;
 
-const NodeCoordinates flat_quad = placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
-const NodeCoordinates warped_quad =
-    placed({{0, 0, 0.2}, {1.2, 0.1, -0.1}, {1.1, 0.9, 0.3}, {-0.1, 1, -0.2}});
-const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2, 1, -0.1}});
-const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
 
-Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
-  return m * facet_shape_functions(static_cast<int>(m.cols()), xi);
-}
-Eigen::Vector3d point_at(const NodeCoordinates& m, const Eigen::Vector2d& xi, double gap) {
-  return surface_point(m, xi) + gap * facet_normal(m, xi);
-}
-NodeCoordinates single(const Eigen::Vector3d& x) { return x; }
-Eigen::Vector3d edge_outward(const NodeCoordinates& m, int k, const Eigen::Vector2d& xi) {
-  const int n = static_cast<int>(m.cols());
-  return (m.col((k + 1) % n) - m.col(k)).cross(facet_normal(m, xi)).normalized();
-}
 
 /// The tests' own smoothed bracket P(s), s = ĝ − λ/ε_N.
 double expected_P(double s) {

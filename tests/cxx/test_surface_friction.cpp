@@ -21,6 +21,13 @@
 namespace hypercontact {
 namespace {
 
+using test::edge_outward;
+using test::flat_quad;
+using test::one_node;
+using test::point_at;
+using test::single;
+using test::surface_point;
+using test::triangle;
 using test::fd_jacobian_stacked;
 using test::relative_error;
 using test::stack;
@@ -35,26 +42,12 @@ using test::placed;
 const Eigen::Matrix3d& rotation = test::test_rotation;
 const Eigen::Vector3d& shift = test::test_shift;
 
-const NodeCoordinates flat_quad = placed({{0, 0, 0}, {1.1, 0.1, 0}, {1.2, 0.9, 0}, {-0.1, 1, 0}});
 const NodeCoordinates warped_a =
     placed({{0, 0, 0.2}, {1.2, 0.1, -0.1}, {1.1, 0.9, 0.3}, {-0.1, 1, -0.2}});
 /// Shares warped_a's edge 1 (its nodes 1, 2) as its edge 3.
 const NodeCoordinates warped_b =
     placed({{1.2, 0.1, -0.1}, {2.3, 0.0, 0.15}, {2.2, 1.1, -0.1}, {1.1, 0.9, 0.3}});
-const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2, 1, -0.1}});
-const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
 
-Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
-  return m * facet_shape_functions(static_cast<int>(m.cols()), xi);
-}
-Eigen::Vector3d point_at(const NodeCoordinates& m, const Eigen::Vector2d& xi, double gap) {
-  return surface_point(m, xi) + gap * facet_normal(m, xi);
-}
-NodeCoordinates single(const Eigen::Vector3d& x) { return x; }
-Eigen::Vector3d edge_outward(const NodeCoordinates& m, int k, const Eigen::Vector2d& xi) {
-  const int n = static_cast<int>(m.cols());
-  return (m.col((k + 1) % n) - m.col(k)).cross(facet_normal(m, xi)).normalized();
-}
 
 /// A friction element: the unknowns are slave, current facet and old facet nodes.
 struct Element {
