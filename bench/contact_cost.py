@@ -56,7 +56,7 @@ def micro(sim, repeat=5):
     t0 = time.perf_counter()
     for _ in range(repeat):
         for c in surface:
-            c.search(c.current_coordinates(sim.u))
+            c.geometry.search(c.geometry.coordinates(sim.u))
     split["contact search"] = (time.perf_counter() - t0) / repeat
     sim.timers.seconds.clear()
     sim.timers.seconds.update(saved)
@@ -73,7 +73,7 @@ def describe(name, sim, summary, wall):
         "newton_total": int(sum(its)), "wall": wall, "split": s,
         "per_it": {k: s.get(k, 0.0) / n for k in PHASES},
         "micro": micro(sim),
-        "slave_points": int(sum(c.num_points for c in surface)),
+        "slave_points": int(sum(c.geometry.num_points for c in surface)),
         "surface_nodes": int(sum(c.num_nodes for c in surface)),
     }
 

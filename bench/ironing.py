@@ -32,47 +32,47 @@ from hypercontact import _dolfinx as dfx
 from hypercontact import scene
 from hypercontact.phases import run_phase
 from hypercontact.simulation import Simulation
+from hypercontact.solve.newton_solver import NewtonSolver
 
 ROOT = Path(__file__).resolve().parents[1]
 RADIUS, WALL, AXIS_X, AXIS_Z = 3.0, 0.2, 2.5, 6.0
 PRESS, SLIDE, MU = 1.4, 4.0, 0.3
 
 
-class IroningSimulation(Simulation):
-    """The scene with its die box mapped onto the half-cylindrical shell
-    before anything else is built on the mesh."""
+def bend_die(body):
+    """The scene's die box mapped onto the half-cylindrical shell."""
+    x = body.mesh.geometry.x
+    die = x[:, 2] > 5.0  # the die box sits at z in [10, 10.2]; the slab below z = 3
+    a = x[die, 0]  # 0 … 1 around the half circle
+    r = RADIUS - WALL + (x[die, 2] - 10.0)  # box z = 10 inner, 10.2 outer
+    theta = 2.0 * np.pi - np.pi * a  # 2π → π: the lower half, orientation kept
+    x[die, 0] = AXIS_X + r * np.cos(theta)
+    x[die, 2] = AXIS_Z + r * np.sin(theta)
 
-    def _build_body(self, mesh):
-        body = super()._build_body(mesh)
-        x = body.mesh.geometry.x
-        die = x[:, 2] > 5.0  # the die box sits at z in [10, 10.2]; the slab below z = 3
-        a = x[die, 0]  # 0 … 1 around the half circle
-        r = RADIUS - WALL + (x[die, 2] - 10.0)  # box z = 10 inner, 10.2 outer
-        theta = 2.0 * np.pi - np.pi * a  # 2π → π: the lower half, orientation kept
-        x[die, 0] = AXIS_X + r * np.cos(theta)
-        x[die, 2] = AXIS_Z + r * np.sin(theta)
-        return body
 
-    #: accept a Newton solve that ran out of iterations or line search (not a NaN) with |R| ≤ this (None: never)
-    stall_tol = None
+def accept_stalled(stall_tol):
+    """NewtonSolver.solve, plus a fallback: node-to-surface against the
+    faceted die has force jumps where a penetrated slave node crosses a die
+    facet edge (the normal turns by the facet angle), so Newton can stall at
+    |R| of the order p_N·w·Δθ without reaching the tolerance; such an iterate
+    is accepted when |R| ≤ stall_tol and reported ("ACCEPTED_STALLED" with
+    its |R| in the step log)."""
+    solve = NewtonSolver.solve
 
-    def solve_step(self):
-        """Simulation.solve_step, plus a fallback: node-to-surface against the
-        faceted die has force jumps where a penetrated slave node crosses a
-        die facet edge (the normal turns by the facet angle), so Newton can
-        stall at |R| of the order p_N·w·Δθ without reaching the tolerance;
-        such an iterate is accepted when |R| ≤ stall_tol and reported
-        ("ACCEPTED_STALLED" with its |R| in the step log)."""
-        ok, its, norms, reason = super().solve_step()
+    def solve_accepting_stalled(self):
+        ok, its, norms, reason = solve(self)
         last = float(norms[-1]) if len(norms) else np.inf
-        if (not ok and self.stall_tol is not None and reason in ("DIVERGED_MAX_IT", "DIVERGED_LINE_SEARCH") and np.isfinite(last)
-                and last <= self.stall_tol
-                and self.comm.allreduce(int(np.all(np.isfinite(self.problem.x.array))), op=MPI.MIN)):
-            self.problem.x.copy(self.w.vector)
-            dfx.update_ghosts(self.w)
-            self.sync_displacement()
+        model = self.model
+        if (not ok and reason in ("DIVERGED_MAX_IT", "DIVERGED_LINE_SEARCH") and np.isfinite(last)
+                and last <= stall_tol
+                and model.comm.allreduce(int(np.all(np.isfinite(model.problem.x.array))), op=MPI.MIN)):
+            model.problem.x.copy(model.w.vector)
+            dfx.update_ghosts(model.w)
+            model.sync_displacement()
             return True, its, norms, "ACCEPTED_STALLED"
         return ok, its, norms, reason
+
+    NewtonSolver.solve = solve_accepting_stalled
 
 
 def main():
@@ -137,12 +137,13 @@ def main():
                 norms = sim.snes.getConvergenceHistory()[0]
                 print("   residual norms:", " ".join(f"{v:.2e}" for v in norms[:sim.snes.getIterationNumber() + 1]))
                 print("   active sets (closed, Σ(closed idx + facet), slipping):",
-                      [a[0] for a in sim.active_sets[-8:]], flush=True)
+                      [a[0] for a in sim.newton.history.active_sets[-8:]], flush=True)
         if comm.rank == 0:
             print(f"[{time.perf_counter() - t0:7.1f} s] {msg}", flush=True)
 
-    sim = (Simulation if rigid else IroningSimulation)(sc, comm, log=log)
-    sim.stall_tol = args.stall_tol
+    sim = Simulation(sc, comm, log=log, map_mesh=None if rigid else bend_die)
+    if args.stall_tol is not None:
+        accept_stalled(args.stall_tol)
     c = sim.contacts[0]
     work = Path("/tmp") / f"ironing_{args.die}_{args.n}x{args.m}"
     die = "rigid cylinder (smooth)" if rigid else f"die {args.die_n}x{args.die_n}x1"
@@ -157,16 +158,10 @@ def main():
             (out / ("ironing_rigid.json" if rigid else "ironing.json")).write_text(json.dumps(summary, indent=1))
 
     def record(phase, s):
-        st = c.committed
-        if rigid:  # normal and friction states come separately
-            normal = c.evaluate(sim.u)
-            Fn = -comm.allreduce(np.asarray(normal.force), op=MPI.SUM)  # on the die = −(on the slab)
-            F = Fn - comm.allreduce(np.asarray(st.force), op=MPI.SUM)
-            p, area = np.asarray(normal.pressure), c.area
-        else:
-            F = -comm.allreduce(np.asarray(st.force), op=MPI.SUM)  # on the die = −(on the slab)
-            Fn = -comm.allreduce(np.asarray(st.normal_force), op=MPI.SUM)  # its normal-pressure part
-            p, area = np.asarray(st.pressure), c.point_area
+        st = c.law.committed
+        F = -comm.allreduce(np.asarray(st.force), op=MPI.SUM)  # on the die = −(on the slab)
+        Fn = -comm.allreduce(np.asarray(st.normal_force), op=MPI.SUM)  # its normal-pressure part
+        p, area = np.asarray(st.pressure), c.geometry.point_area
         N = comm.allreduce(float(np.sum(area * p)), op=MPI.SUM)
         state = np.asarray(st.state)
         slip = state == 2
@@ -176,7 +171,7 @@ def main():
         rows.append({"phase": phase, "s": s, "Fx": F[0], "Fy": F[1], "Fz": F[2], "N": N,
                      "stick": int(comm.allreduce(np.count_nonzero(state == 1), op=MPI.SUM)),
                      "slip": int(comm.allreduce(np.count_nonzero(slip), op=MPI.SUM)),
-                     "slip_t": wt, "slip_pN": wp, "dissipation": c.dissipation,
+                     "slip_t": wt, "slip_pN": wp, "dissipation": c.law.dissipation,
                      "Fx_normal": Fn[0], "Fz_normal": Fn[2], "Fx_friction": F[0] - Fn[0], "Fz_friction": F[2] - Fn[2]})
 
     def phase(name, motion, steps, s0, s1, linesearch, max_it):
@@ -186,10 +181,9 @@ def main():
         sim.scene["solver"].update(linesearch=linesearch, max_it=max_it, rtol=args.rtol, atol=args.atol)  # read by each run's SNES
         orig = c.commit
 
-        def commit(u):
-            out_ = orig(u)
-            record(name, s0 + sim._lam * (s1 - s0))
-            return out_
+        def commit():
+            orig()
+            record(name, s0 + c.geometry.load_factor * (s1 - s0))
 
         c.commit = commit
         try:

@@ -67,7 +67,7 @@ def test_with_friction_the_gap_tolerance_is_reached_and_the_cone_holds(tmp_path)
     sim.run(out_dir=str(tmp_path))
     punch = sim.contacts[0]
     assert punch.max_penetration(sim.u) <= TOL
-    state = punch.committed
+    state = punch.law.committed
     slipping = np.asarray(state.state) == 2
     assert np.count_nonzero(slipping) > 3
     pressure = np.asarray(punch.evaluate(sim.u).pressure)

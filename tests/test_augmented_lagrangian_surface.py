@@ -54,14 +54,14 @@ def test_hertz_reaches_the_gap_tolerance_for_four_decades_of_penalty(tmp_path, f
     sim, writer, augmentations = hertz(tmp_path, factor, "augmented_lagrangian")
     c = sim.contacts[0]
     assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
-    tol = c.spec["gap_tolerance"]
+    tol = c.enforcement.gap_tolerance
     assert 0 < tol < 0.01  # automatic: 1e-3 of the slave's first element layer
     assert c.max_penetration(sim.u) <= tol
     assert max(augmentations) < 30  # bounded, never the limit
     if factor >= 10.0:
         assert max(augmentations) <= 2
     # multipliers are committed with each converged step and carry the load
-    assert np.array_equal(c.multipliers, c.multipliers_committed)
+    assert np.array_equal(c.enforcement.multipliers, c.enforcement.committed)
     # the force: Hertz's F ~ δ^(3/2) turns a penetration within the tolerance (1.9e-3 mm at this
     # mesh) of the 0.3 mm indentation into (3/2) 1.9e-3/0.3 = 0.9 % (measured: −0.7 % to −0.15 %)
     F = 4.0 * float(c.force(sim.u)[2])
@@ -112,7 +112,7 @@ def test_patch_test_with_a_soft_penalty_reaches_the_closed_form(tmp_path, factor
     uz_exact = l3 - 1.0  # the corner probe at height 1 (two blocks of 0.5, the same material)
     sim, writer, augmentations = blocks(tmp_path / "al", factor, "augmented_lagrangian")
     c = sim.contacts[0]
-    tol = c.spec["gap_tolerance"]
+    tol = c.enforcement.gap_tolerance
     assert c.max_penetration(sim.u) <= tol
     assert max(augmentations) <= 3
     uz = writer.steps[-1]["corner_uz"]
@@ -126,7 +126,7 @@ def test_patch_test_with_a_soft_penalty_reaches_the_closed_form(tmp_path, factor
     assert np.all(p > 0)
     assert np.max(np.abs(p / (P * lat**2) - 1.0)) < 0.10
     # the mean: equilibrium, up to the discrete lateral stretch (measured 1.3e-5 at factor 0.1)
-    assert float(np.dot(p, c.point_area) / c.point_area.sum()) == pytest.approx(P * lat**2, rel=1e-4)
+    assert float(np.dot(p, c.geometry.point_area) / c.geometry.point_area.sum()) == pytest.approx(P * lat**2, rel=1e-4)
     # the pure soft penalty misses the displacement by its penetration
     pen, wpen, _ = blocks(tmp_path / "penalty", factor, "penalty")
     assert pen.contacts[0].max_penetration(pen.u) > 10 * tol
@@ -141,7 +141,7 @@ def test_zero_multipliers_are_the_penalty_bit_for_bit(tmp_path):
         al, _, augmentations = blocks(tmp_path / "a", 1.0, "augmented_lagrangian",
                                       extra + ["contact.0.gap_tolerance=1.0"])
         assert augmentations and max(augmentations) == 0
-        assert np.array_equal(al.contacts[0].multipliers, np.zeros_like(al.contacts[0].multipliers))
+        assert np.array_equal(al.contacts[0].enforcement.multipliers, np.zeros_like(al.contacts[0].enforcement.multipliers))
         assert np.array_equal(pen.u.x.array, al.u.x.array)
 
 
@@ -150,14 +150,14 @@ def test_cut_back_restores_and_pairing_keeps_the_multipliers(tmp_path):
     pairing keeps each slave point's multiplier (it belongs to the point)."""
     sim, _, _ = blocks(tmp_path, 1.0, "augmented_lagrangian")
     c = sim.contacts[0]
-    committed = c.multipliers_committed.copy()
+    committed = c.enforcement.committed.copy()
     assert np.all(committed > 0)
-    c.multipliers = committed * 2.0
-    c.restore_multipliers()
-    assert np.array_equal(c.multipliers, committed)
+    c.enforcement.multipliers = committed * 2.0
+    c.restore()
+    assert np.array_equal(c.enforcement.multipliers, committed)
     before = np.asarray(c.evaluate(sim.u).pressure)
-    c.set_pairing(sim.u)
-    assert np.array_equal(c.multipliers, committed)
+    c.update_pairing(sim.u, fresh=True)
+    assert np.array_equal(c.enforcement.multipliers, committed)
     assert np.allclose(np.asarray(c.evaluate(sim.u).pressure), before, rtol=1e-12)
 
 
@@ -168,7 +168,7 @@ def test_with_friction_the_cone_uses_the_augmented_pressure(tmp_path):
     sim, _, augmentations = blocks(tmp_path, 1.0, "augmented_lagrangian",
                                    ["contact.0.mu=0.2", 'contact.0.integration="nodal"'])
     c = sim.contacts[0]
-    assert c.max_penetration(sim.u) <= c.spec["gap_tolerance"]
+    assert c.max_penetration(sim.u) <= c.enforcement.gap_tolerance
     assert max(augmentations) >= 1
     state = c.evaluate(sim.u)
     p, t = np.asarray(state.pressure), np.linalg.norm(np.asarray(state.traction), axis=1)
@@ -178,4 +178,4 @@ def test_with_friction_the_cone_uses_the_augmented_pressure(tmp_path):
     slip = status == 2
     assert np.allclose(t[slip], 0.2 * p[slip], rtol=1e-9)
     # the multipliers carry the load, not the soft penalty
-    assert np.all(c.multipliers[p > 0] > 0)
+    assert np.all(c.enforcement.multipliers[p > 0] > 0)

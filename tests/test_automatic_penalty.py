@@ -8,7 +8,7 @@ import pytest
 from mpi4py import MPI
 
 from hypercontact import scene
-from hypercontact.penalty import p_wave_modulus
+from hypercontact.contact.penalty import p_wave_modulus
 from hypercontact.scene import SceneError
 from hypercontact.simulation import Simulation
 
@@ -42,8 +42,8 @@ def test_same_scene_in_mm_mpa_and_m_pa_gives_the_same_results(tmp_path):
     sim_mm, w_mm = run(punch(), tmp_path / "mm")
     sim_m, w_m = run(punch(1e-3, 1e6), tmp_path / "m")
     # ε_N [N/mm³] = 1e-9 ε_N [N/m³]: the same physical penalty
-    for c_mm, c_m in zip(sim_mm.scene["contact"], sim_m.scene["contact"]):
-        assert c_m["eps_n"] == pytest.approx(1e9 * c_mm["eps_n"], rel=1e-12)
+    for c_mm, c_m in zip(sim_mm.contact_settings, sim_m.contact_settings):
+        assert c_m.eps_n == pytest.approx(1e9 * c_mm.eps_n, rel=1e-12)
     assert len(w_mm.steps) == len(w_m.steps)
     for a, b in zip(w_mm.steps, w_m.steps):
         assert b["punch_fz"] == pytest.approx(a["punch_fz"], rel=1e-8)  # N in both
@@ -61,8 +61,10 @@ def test_automatic_penalty_value(tmp_path):
     p = sc["material"]["parameters"]
     M = p["K"] + 4.0 / 3.0 * 2.0 * (p["alpha1"] + p["alpha2"])
     assert p_wave_modulus("mooney_rivlin", p) == pytest.approx(M, rel=1e-15)
-    assert sc["contact"][0]["eps_n"] == pytest.approx(100.0 * M / 5.0, rel=1e-12)
-    assert sc["contact"][1]["eps_n"] == pytest.approx(30.0 * M / 5.0, rel=1e-12)
+    assert sim.contact_settings[0].eps_n == pytest.approx(100.0 * M / 5.0, rel=1e-12)
+    assert sim.contact_settings[1].eps_n == pytest.approx(30.0 * M / 5.0, rel=1e-12)
+    assert sim.contacts[1].eps_n == sim.contact_settings[1].eps_n
+    assert sc["contact"][0]["eps_n"] == 0.0  # derived values are returned, the scene stays as written
     assert any("automatic penalty" in e for e in sim.effects)
 
 

@@ -8,16 +8,16 @@ import pytest
 from conftest import quiet
 from mpi4py import MPI
 
-import hypercontact.simulation
 from hypercontact import _cpp, scene
-from hypercontact.friction import FrictionalRigidContact
+from hypercontact.contact.law import Coulomb
+from hypercontact.contact.rigid import RigidFrictionHistory
 from hypercontact.results import ResultsWriter
 from hypercontact.simulation import Simulation
 
 MU = 0.3
 
 
-def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25), friction_keys=True, xdmf=False):
+def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25), friction_keys=True, xdmf=False, coulomb_law=False):
     """Top face held and moved by (shift, 0, −0.1); bottom on a rigid base."""
     data = {
         "mesh": {"builder": "box", "size": [1.0, 1.0, 1.0], "n": 2, "m": 2},
@@ -32,6 +32,9 @@ def dragged_block(out, shift, mu=MU, steps=(0.25, 0.25), friction_keys=True, xdm
     if not friction_keys:  # the scene as a frictionless user writes it
         del data["contact"][0]["eps_t"], data["contact"][0]["mu"]
     sim = Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)
+    if coulomb_law:  # the Coulomb law with this μ, even μ = 0 (the factory builds it for μ > 0 only)
+        c = sim.contacts[0]
+        c.law = Coulomb(mu, c.eps_n, RigidFrictionHistory(c.geometry), c.comm)
     return sim, sim.run()
 
 
@@ -44,7 +47,7 @@ def test_wide_cone_sticks(out_dir):
     assert fz > 0 and 0 < -fx < 0.5 * mu * fz  # holds the block back, well inside the cone
     assert last["base_dissipation"] == pytest.approx(0.0, abs=1e-14)
     (base,) = sim.contacts
-    state = base.committed
+    state = base.law.committed
     assert np.all(np.asarray(state.state) == 1)  # every node sticks
 
 
@@ -54,7 +57,7 @@ def test_large_drag_slides_at_mu_times_normal_force(out_dir):
     last = writer.steps[-1]
     fx, fy, fz = last["base_fx"], last["base_fy"], last["base_fz"]
     (base,) = sim.contacts
-    state = base.committed
+    state = base.law.committed
     assert np.all(np.asarray(state.state) == 2)  # every node slides
     t = np.linalg.norm(np.asarray(state.traction), axis=1)
     p = np.asarray(base.evaluate(sim.u).pressure)
@@ -70,7 +73,7 @@ def test_large_drag_slides_at_mu_times_normal_force(out_dir):
 @pytest.mark.mpi
 def test_zero_friction_builds_no_friction(out_dir):
     sim, writer = dragged_block(out_dir, 0.3, mu=0.0)
-    assert not any(isinstance(c, FrictionalRigidContact) for c in sim.contacts)
+    assert not any(c.frictional for c in sim.contacts)
     assert "frictionless" in sim.effects[1]
     assert writer.steps[-1]["base_fx"] == pytest.approx(0.0, abs=1e-12)
 
@@ -102,9 +105,8 @@ def test_zero_friction_equals_frictionless_exactly_and_calls_no_friction_kernel(
     if MPI.COMM_WORLD.rank == 0:
         assert (out_dir / "mu0" / "curves.csv").read_bytes() == (out_dir / "frictionless" / "curves.csv").read_bytes()
     # The friction kernel at μ = 0 (forced: the simulation never builds it so) is frictionless exactly.
-    monkeypatch.setattr(hypercontact.simulation, "RigidContact", FrictionalRigidContact)
-    simk, wk = dragged_block(out_dir / "kernel", 0.3, mu=0.0)
-    assert isinstance(simk.contacts[0], FrictionalRigidContact)
+    simk, wk = dragged_block(out_dir / "kernel", 0.3, mu=0.0, coulomb_law=True)
+    assert simk.contacts[0].frictional
     assert np.array_equal(simk.u.x.array, simf.u.x.array)
     assert wk.steps[-1]["base_dissipation"] == 0.0 and wk.steps[-1]["base_fx"] == wf.steps[-1]["base_fx"]
 
@@ -118,6 +120,6 @@ def test_cut_back_leaves_the_history_as_if_never_failed(out_dir):
     # both end at λ = 1; paths differ, so compare the sliding force law, exact in both
     for sim in (sim_a, sim_b):
         (base,) = sim.contacts
-        t = np.linalg.norm(np.asarray(base.committed.traction), axis=1)
+        t = np.linalg.norm(np.asarray(base.law.committed.traction), axis=1)
         assert np.allclose(t, MU * np.asarray(base.evaluate(sim.u).pressure), rtol=1e-9, atol=0)
     assert len(wb.steps) >= 1

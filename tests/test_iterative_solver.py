@@ -8,7 +8,7 @@ import pytest
 from mpi4py import MPI
 
 from hypercontact import scene
-from hypercontact.problem import linear_solver_options
+from hypercontact.solve.newton import linear_solver_options
 from hypercontact.simulation import Simulation
 
 from conftest import ROOT

@@ -87,7 +87,7 @@ def test_assembled_tangent_is_the_derivative_of_the_residual(tmp_path):
     import numpy as np
 
     from hypercontact import _dolfinx as dfx
-    from hypercontact.friction import OPEN, SLIP, STICK
+    from hypercontact.contact import OPEN, SLIP, STICK
 
     sc = scene.load(ROOT / "scenes" / "punch_mu0.3_0.toml",
                     ["mesh.n=4", "mesh.m=1", "output.xdmf=false", f"output.dir={tmp_path}"])
@@ -104,8 +104,8 @@ def test_assembled_tangent_is_the_derivative_of_the_residual(tmp_path):
         with pytest.raises(Stop):
             sim.run()
     # a step of indentation (Δλ = 0.25) against the history of the last converged step: some nodes slip
-    sim.set_load_factor(sim.contacts[0].lam_committed + 0.25)
-    assert sim.solve_step()[0]
+    sim.set_load_factor(sim.contacts[0].law.history.lam_committed + 0.25)
+    assert sim.newton.solve()[0]
     P, x = sim.problem, sim.problem.x.copy()
     sim.w.vector.copy(x)
     fixed = np.concatenate([dfx.bc_dofs(bc) for bc in sim.bcs])
@@ -124,7 +124,7 @@ def test_assembled_tangent_is_the_derivative_of_the_residual(tmp_path):
         d.array[:] = rng.standard_normal(x.array.size)
         d.array[fixed] = 0.0
         residual(x0)
-        states = np.asarray(sim.contacts[0].last.state)
+        states = np.asarray(sim.contacts[0].state.state)
         assert {OPEN, STICK, SLIP} <= set(states.tolist()), np.bincount(states)
         P.jacobian(None, x0, P.A, P.A)
         Ad = d.duplicate()
@@ -149,7 +149,7 @@ def test_friction_on_punch_and_base_at_once(coarse, tmp_path):
     and corner stay on the base as with base friction alone."""
     import numpy as np
 
-    from hypercontact.friction import SLIP, STICK
+    from hypercontact.contact import SLIP, STICK
 
     sc = scene.load(ROOT / "scenes" / "punch_mu0.3_1.toml",
                     ["mesh.n=4", "mesh.m=1", "output.xdmf=false", f"output.dir={tmp_path}"])
@@ -161,7 +161,7 @@ def test_friction_on_punch_and_base_at_once(coarse, tmp_path):
     assert last["punch_fz"] + last["base_fz"] == pytest.approx(0.0, abs=1e-8 * abs(last["punch_fz"]))
     slipping = 0
     for c, mu in zip(sim.contacts, (0.3, 1.0)):
-        state = c.committed
+        state = c.law.committed
         status = np.asarray(state.state)
         p = np.asarray(c.evaluate(sim.u).pressure)
         t = np.linalg.norm(np.asarray(state.traction), axis=1)

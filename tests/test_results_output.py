@@ -19,7 +19,7 @@ from hypercontact.forms import materials
 from hypercontact.results import NonFiniteField, ResultsWriter
 from hypercontact.simulation import Simulation, StepFailure
 from reference.homogeneous import compressed_block, mooney_rivlin_principal
-from test_block_compression import D, EPS, PARAMS, block_scene
+from reference.block import D, EPS, PARAMS, block_scene
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -38,7 +38,7 @@ def run_block(out, monkeypatch, stress=None, **steps):
     sc["steps"].update(steps)
     sim = Simulation(scene.load(sc), MPI.COMM_WORLD, log=quiet)
     if stress is not None:
-        sim.stress = stress  # the stress law the simulation hands to its results writer
+        sim.model.stress = stress  # the stress law the model hands to its results writer
     return sim, sim.run()
 
 
@@ -138,7 +138,7 @@ def test_load_curves_and_deformed_shape(tmp_path, monkeypatch):
     assert_png(png)
     with pytest.raises(KeyError, match="no column 'top_fzz'"):
         pictures.load_curves(tmp_path / "curves.csv", tmp_path / "x.png", "top_displacement", ["top_fzz"])
-    assert_png(pictures.deformed_shape(sim.body.mesh, sim.u, writer.von_mises, tmp_path / "vm.png", title="σ_vM"))
+    assert_png(pictures.deformed_shape(sim.body.mesh, sim.u, writer.field_writer.von_mises, tmp_path / "vm.png", title="σ_vM"))
     assert_png(pictures.deformed_shape(sim.body.mesh, sim.u, "uz", tmp_path / "uz.png", scale=3.0))
 
 

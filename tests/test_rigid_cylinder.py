@@ -77,7 +77,7 @@ def test_phases_press_then_slide_the_cylinder_with_friction(out_dir):
     assert abs(f_press[0]) < 1e-6 * N
     assert f_slide[2] == pytest.approx(-N, rel=2e-3)  # the die did not jump back to its first rest position
     assert f_slide[0] == pytest.approx(MU * abs(f_slide[2]), rel=1e-3)  # dragged along +x, full slip
-    assert np.all(np.asarray(sim.contacts[0].committed.state)[np.asarray(sim.contacts[0].area) > 0] == 2)
+    assert np.all(np.asarray(sim.contacts[0].law.committed.state)[np.asarray(sim.contacts[0].geometry.area) > 0] == 2)
 
 
 def test_cylinder_keys_and_errors(tmp_path):

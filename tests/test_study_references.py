@@ -11,7 +11,7 @@ from mpi4py import MPI
 
 from hypercontact import cli, hertz, scene
 from hypercontact.simulation import Simulation
-from test_surface_contact import sigma_zz_spread  # the patch test's own σ_zz spread (UFL, by cell)
+from reference.patch_spread import sigma_zz_spread  # the patch test's own σ_zz spread (UFL, by cell)
 
 # Steel ball on a steel plane, both E = 210 GPa, ν = 0.3; R = 10 mm, F = 100 N (units mm, N, MPa).
 # By hand: E* = E / (2 (1 − ν²)) = 210000 / 1.82 = 115384.615 MPa;

@@ -21,6 +21,7 @@ from hypercontact import _dolfinx as dfx
 from reference.finite_differences import assembled_and_fd_jacobians
 from hypercontact import scene
 from hypercontact.simulation import Simulation
+from reference.patch_spread import sigma_zz_spread
 
 SCENES = __import__("pathlib").Path(__file__).resolve().parent.parent / "scenes"
 
@@ -30,21 +31,6 @@ def run_blocks(tmp_path, overrides=(), comm=MPI.COMM_WORLD):
     sim = Simulation(sc, comm, log=lambda *a, **k: None)
     sim.run(out_dir=str(tmp_path))
     return sim
-
-
-def sigma_zz_spread(sim):
-    """(max − min)/|mean| of the Cauchy stress σ_zz over all cells (midpoint)."""
-    Q = fem.FunctionSpace(sim.body.mesh, ("DG", 0))
-    s = fem.Function(Q)
-    F = ufl.Identity(3) + ufl.grad(sim.u)
-    sigma = sim.stress(sim.u) * F.T / ufl.det(F)
-    s.interpolate(fem.Expression(sigma[2, 2], Q.element.interpolation_points()))
-    comm = sim.comm
-    n = dfx.num_owned_cells(sim.body.mesh)
-    v = s.x.array[:n]
-    lo, hi = comm.allreduce(v.min(), op=MPI.MIN), comm.allreduce(v.max(), op=MPI.MAX)
-    mean = comm.allreduce(v.sum(), op=MPI.SUM) / comm.allreduce(len(v), op=MPI.SUM)
-    return (hi - lo) / abs(mean)
 
 
 @pytest.mark.parametrize("variant", [["contact.0.passes=2"], ['contact.0.integration="gauss"']],

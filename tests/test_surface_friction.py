@@ -22,8 +22,9 @@ from hypercontact import _dolfinx as dfx
 from reference.finite_differences import assembled_and_fd_jacobians
 from hypercontact.phases import run_phase
 from hypercontact.simulation import Simulation
-from hypercontact.surface_contact import SurfaceContact
-from hypercontact.surface_friction import FrictionalSurfaceContact
+from hypercontact.solve.newton_solver import NewtonSolver
+from hypercontact.contact.factory import _surface_law
+from hypercontact.contact.pair import Contact
 
 SCENES = __import__("pathlib").Path(__file__).resolve().parent.parent / "scenes"
 MU, PRESS = 0.3, 0.01
@@ -50,8 +51,8 @@ def slider_scene(mu=MU):
 def forces(c):
     """(Σ w|t|, resultant tangential force on the slider, N = Σ w p_N, states)
     at the last converged step."""
-    s = c.committed
-    w, t = c.point_area, np.asarray(s.traction)
+    s = c.law.committed
+    w, t = c.geometry.point_area, np.asarray(s.traction)
     return ((w * np.linalg.norm(t, axis=1)).sum(), -(w[:, None] * t).sum(axis=0),
             (w * np.asarray(s.pressure)).sum(), np.asarray(s.state))
 
@@ -59,21 +60,21 @@ def forces(c):
 def test_block_sticks_below_mu_n_then_slides_at_mu_n(tmp_path):
     sim = Simulation(slider_scene(), MPI.COMM_SELF, log=lambda *a, **k: None)
     c = sim.contacts[0]
-    assert isinstance(c, FrictionalSurfaceContact)
+    assert c.frictional and c.deformable
     run_phase(sim, {1: [0.0, 0.0, -PRESS]}, tmp_path / "press")
-    dissipation = [c.dissipation_step]
+    dissipation = [c.law.dissipation_step]
     # stick: a drag of 0.002 (a fifth of the slip onset) leaves most points stuck, |F_t| < μN
     run_phase(sim, {1: [0.002, 0.0, -PRESS]}, tmp_path / "stick")
-    dissipation.append(c.dissipation_step)
+    dissipation.append(c.law.dissipation_step)
     _, Ft, N, state = forces(c)
     assert N > 0 and np.count_nonzero(state == STICK) > 2 * np.count_nonzero(state == SLIP)
     assert np.linalg.norm(Ft) < 0.5 * MU * N and Ft[0] < 0  # resists the drag (+x)
     # slide: every closed point on the cone; the resultant at μN
     for k, dx in enumerate((0.02, 0.03)):
         run_phase(sim, {1: [dx, 0.0, -PRESS]}, tmp_path / f"slide{k}")
-        dissipation.append(c.dissipation_step)
+        dissipation.append(c.law.dissipation_step)
     sum_t, Ft, N, state = forces(c)
-    closed = np.asarray(c.committed.pressure) > 0
+    closed = np.asarray(c.law.committed.pressure) > 0
     assert np.all(state[closed] == SLIP) and closed.sum() >= 20
     assert abs(sum_t - MU * N) < 1e-6 * MU * N
     assert abs(np.linalg.norm(Ft) - MU * N) < 1e-3 * MU * N
@@ -81,7 +82,7 @@ def test_block_sticks_below_mu_n_then_slides_at_mu_n(tmp_path):
     assert min(dissipation) >= 0.0
     # steady sliding: the step's dissipation is the work of the friction force over the drag step
     # (the last phase: two steps of 0.005), within the penalty and master-strain effects (< 2 %)
-    assert abs(c.dissipation_step - MU * N * 0.005) < 0.02 * MU * N * 0.005
+    assert abs(c.law.dissipation_step - MU * N * 0.005) < 0.02 * MU * N * 0.005
 
 
 def test_assembled_jacobian_matches_finite_differences_in_stick_and_slip(tmp_path):
@@ -111,7 +112,7 @@ def test_assembled_jacobian_matches_finite_differences_in_stick_and_slip(tmp_pat
     sim.update_pairing(fresh=True)
     state = np.asarray(c.evaluate(sim.u).state)
     assert np.count_nonzero(state == STICK) >= 2 and np.count_nonzero(state == SLIP) >= 2
-    assert np.any(c.old_facet != np.asarray(c.evaluate(sim.u).facet))  # old-facet columns matter
+    assert np.any(c.law.history.facet != np.asarray(c.evaluate(sim.u).facet))  # old-facet columns matter
     p = sim.problem
     x = p.x
     sim.w.vector.copy(x)
@@ -136,53 +137,55 @@ def test_mu_zero_is_exactly_frictionless(tmp_path, monkeypatch):
             m.setattr(_cpp, name, forbidden)
         sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
         run_phase(sim, {1: [0.0, 0.0, -PRESS]}, tmp_path / "press")
-    assert all(type(c) is SurfaceContact for c in sim.contacts)
-    # the same state through the frictional assembly with μ = 0
+    assert not any(c.frictional for c in sim.contacts)
+    # the same state through the frictional assembly with μ = 0: the same geometry with the Coulomb law
     plain = sim.contacts[0]
-    spec = dict(sc["contact"][0], mu=0.0)
-    constrained = np.zeros(sim.w.x.array.size, bool)
-    for bc in sim.bcs:
-        constrained[dfx.bc_dofs(bc)] = True
-    fric = FrictionalSurfaceContact(spec, sim.V, sim.body.facet_tags, [sim.body.surfaces["top.zmin"]],
-                                    [sim.body.surfaces["zmax"]], constrained)
-    fric.candidates = plain.candidates
+    settings, candidates = sim.contact_settings[0], plain.geometry.candidates
+    law = _surface_law(dict(sc["contact"][0], mu=1.0), settings, plain.geometry, plain.comm)  # μ > 0 builds it
+    law.mu = 0.0
+    plain.geometry.candidates = candidates
+    fric = Contact(plain.name, plain.geometry, law, plain.enforcement, plain.eps_n, plain.smoothing, plain.entry)
     p = sim.problem
     out = []
     for contact in (plain, fric):
         b = p.b.duplicate()
         b.zeroEntries()
-        contact.add_residual_global(sim.u, b)
+        contact.prepare(sim.u)
+        contact.add_residual(b)
         b.assemble()
         A = p.A.duplicate()
         A.zeroEntries()
-        contact.add_tangent(sim.u, A)
+        contact.add_tangent(A)
         A.assemble()
         out.append((b.array.copy(), A.convert("dense").getDenseArray().copy()))
     assert np.count_nonzero(out[0][0]) > 0
     assert np.array_equal(out[0][0], out[1][0]) and np.array_equal(out[0][1], out[1][1])
 
 
-def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path):
+def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path, monkeypatch):
     """In the drag phase, the 2nd Newton solve fails and is cut back, once
     after a real solve that iterated through the friction code and once
     without any iteration: both runs end with the same solution and the same
     history (old facets, ξ, tractions, dissipation)."""
+    original_solve = NewtonSolver.solve
+
     def run(out, real_attempt):
         sim = Simulation(slider_scene(), MPI.COMM_SELF, log=lambda *a, **k: None)
         run_phase(sim, {1: [0.0, 0.0, -PRESS]}, out / "press")
-        solve, calls = sim.solve_step, []
+        solve, calls = original_solve, []
 
-        def failing_once():
+        def failing_once(newton):
             calls.append(sim.load_factor.value.item())
             if len(calls) != 2:
-                return solve()
+                return solve(newton)
             if real_attempt:
-                ok, its, norms, reason = solve()
+                ok, its, norms, reason = solve(newton)
                 assert its >= 1
             return False, 0, [], "FORCED_FAILURE"
 
-        sim.solve_step = failing_once
-        run_phase(sim, {1: [0.004, 0.0, -PRESS]}, out / "drag")
+        with monkeypatch.context() as m:
+            m.setattr(NewtonSolver, "solve", failing_once)
+            run_phase(sim, {1: [0.004, 0.0, -PRESS]}, out / "drag")
         return sim, calls
 
     sim_a, calls_a = run(tmp_path / "real", True)
@@ -190,7 +193,7 @@ def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path):
     assert calls_a == calls_b and calls_a[2] < calls_a[1]  # the 2nd attempt was cut back
     a, b = sim_a.contacts[0], sim_b.contacts[0]
     assert np.abs(sim_a.u.x.array - sim_b.u.x.array).max() <= 1e-10 * np.abs(sim_b.u.x.array).max()
-    assert np.array_equal(a.old_facet, b.old_facet)
-    assert np.abs(a.xi - b.xi).max() <= 1e-10
-    assert np.abs(a.t_old - b.t_old).max() <= 1e-10 * np.abs(b.t_old).max() and np.abs(b.t_old).max() > 0
-    assert a.dissipation == pytest.approx(b.dissipation, rel=1e-10, abs=1e-300)
+    assert np.array_equal(a.law.history.facet, b.law.history.facet)
+    assert np.abs(a.law.history.xi - b.law.history.xi).max() <= 1e-10
+    assert np.abs(a.law.history.traction - b.law.history.traction).max() <= 1e-10 * np.abs(b.law.history.traction).max() and np.abs(b.law.history.traction).max() > 0
+    assert a.law.dissipation == pytest.approx(b.law.dissipation, rel=1e-10, abs=1e-300)

@@ -13,7 +13,7 @@ from hypercontact import cli, scene
 from hypercontact.forms import materials, volume
 from hypercontact.simulation import Simulation, StepFailure
 from reference.homogeneous import compressed_block, neo_hookean_principal
-from test_block_compression import block_scene
+from reference.block import block_scene
 
 K = 3.0
 VARIANTS = list(materials.VOLUMETRIC)

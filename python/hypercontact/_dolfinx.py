@@ -115,6 +115,50 @@ def facets_with_tag(facet_tags, tag):
 
 
 
+def vertex_to_node(V):
+    """Process-local mesh vertex → process-local node of the degree-1 space V."""
+    mesh = V.mesh
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim, 0)
+    c2v = mesh.topology.connectivity(tdim, 0)
+    num_cells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
+    out = np.full(mesh.topology.index_map(0).size_local + mesh.topology.index_map(0).num_ghosts, -1, np.int32)
+    out[c2v.array.reshape(num_cells, -1).ravel()] = V.dofmap.list.array.reshape(num_cells, -1).ravel()
+    return out
+
+
+def facet_vertex_nodes(V, facets):
+    """(nodes of each facet's vertices in dolfinx order (f, k), the first cell of each facet (f,))
+    for process-local facets of the degree-1 space V."""
+    mesh = V.mesh
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim - 1, 0)
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    f2v, f2c = mesh.topology.connectivity(tdim - 1, 0), mesh.topology.connectivity(tdim - 1, tdim)
+    v2n = vertex_to_node(V)
+    per_facet = len(f2v.links(0)) if f2v.num_nodes > 0 else 0
+    nodes = np.array([v2n[f2v.links(f)] for f in facets], dtype=np.int32).reshape(len(facets), per_facet)
+    return nodes, facet_cells(mesh, facets)
+
+
+def facet_cells(mesh, facets):
+    """The first cell of each process-local facet."""
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    f2c = mesh.topology.connectivity(tdim - 1, tdim)
+    return np.array([f2c.links(f)[0] for f in facets], dtype=np.int32)
+
+
+def cell_node_centres(V, cells):
+    """Mean reference coordinate of the vertex nodes of each process-local cell."""
+    mesh = V.mesh
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim, 0)
+    c2v = mesh.topology.connectivity(tdim, 0)
+    v2n, X = vertex_to_node(V), node_coordinates(V)
+    return np.array([X[v2n[c2v.links(c)]].mean(axis=0) for c in cells]).reshape(len(cells), 3)
+
+
 def dirichlet_component(V, component, facets, value=None):
     """Condition u_component = value (a Constant, or 0) on the facets."""
     tdim = V.mesh.topology.dim

@@ -186,6 +186,10 @@ def main(argv=None):
     except (scene_mod.SceneError, FileNotFoundError, ValueError) as e:
         prefix = "invalid scene: " if isinstance(e, scene_mod.SceneError) else ""
         return _fail(console, err, f"hypercontact: {prefix}{e}", 2)
+    finally:  # the console's stream may close after main (a caller's captured stdout)
+        from . import _dolfinx
+
+        _dolfinx.watch_jit_compilation(None)
 
 
 def _fail(console, err, message, code):

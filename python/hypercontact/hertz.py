@@ -47,7 +47,7 @@ def contact_modulus(*bodies):
 
 def young_poisson(material):
     """(E, ν) at small strain of a scene material of a built-in law."""
-    from .penalty import p_wave_modulus
+    from .contact.penalty import p_wave_modulus
 
     law, params = material["law"], material["parameters"]
     try:
@@ -93,12 +93,7 @@ def slave_points(contact, u):
     pressure of the contact's slave points (nodes with nodal integration,
     Gauss points with Gauss-point integration)."""
     state = contact.evaluate(u)
-    if hasattr(contact, "point_weights"):  # surface contact: points are weighted slave nodes
-        nodes = np.where(contact.point_nodes >= 0, contact.point_nodes, 0)
-        X = np.einsum("pa,pak->pk", contact.point_weights, contact.X[nodes])
-        x = contact.slave_points(contact.current_coordinates(u))
-    else:  # a rigid obstacle: the slave points are nodes
-        X, x = np.asarray(contact.X), contact.current_coordinates(u)
+    X, x = contact.point_coordinates(u)  # collective for surfaces
     parts = contact.comm.allgather((X, x, np.asarray(state.gap), np.asarray(state.pressure)))
     return tuple(np.concatenate([q[i] for q in parts]) for i in range(4))
 

@@ -18,10 +18,11 @@ import ufl
 from mpi4py import MPI
 
 from hypercontact import _dolfinx as dfx
-from hypercontact import continuation, results, scene, simulation
-from hypercontact.continuation import ContinuationFailure
+from hypercontact import results, scene
+from hypercontact.solve import path_following
+from hypercontact.solve.continuation import ContinuationFailure
 from hypercontact.forms import materials
-from hypercontact.friction import OPEN, SLIP, STICK
+from hypercontact.contact import OPEN, SLIP, STICK
 from hypercontact.simulation import Simulation
 from hypercontact.sphere1d import PAPER, Sphere, pressure_curve
 from scipy.interpolate import CubicSpline
@@ -102,12 +103,12 @@ class Recorder:
         if sim.contacts:
             c = sim.contacts[0]
             rec["contact"] = c.evaluate(u)
-            rec["x_slave"] = c.current_coordinates(u)
+            rec["x_slave"] = c.geometry.coordinates(u)
             gap = np.asarray(rec["contact"].gap)
-            rec["energy"] += 0.5 * c.eps_n * np.sum(c.area * np.minimum(gap, 0.0) ** 2)
-            if getattr(c, "mu", 0.0) > 0:
-                rec["friction"] = c.committed
-                rec["dissipation_step"] = np.asarray(c.committed.dissipation).copy()
+            rec["energy"] += 0.5 * c.eps_n * np.sum(c.geometry.area * np.minimum(gap, 0.0) ** 2)
+            if c.frictional:
+                rec["friction"] = c.law.committed
+                rec["dissipation_step"] = np.asarray(c.law.committed.dissipation).copy()
         return rec
 
     def column(self, key):
@@ -196,7 +197,7 @@ def test_penalty_law_and_penetration_bound(runs, case):
     seen_contact = False
     for s in r.steps:
         pen = np.maximum(s["x_slave"][:, 0] - PLANE_X, 0.0)
-        normal = -np.sum(c.area * c.eps_n * pen)
+        normal = -np.sum(c.geometry.area * c.eps_n * pen)
         if case == "plane":
             assert SYM * normal == pytest.approx(s["row"]["wall_fx"], rel=1e-12, abs=1e-12)
         assert np.asarray(s["contact"].gap) == pytest.approx(PLANE_X - s["x_slave"][:, 0], abs=1e-12)
@@ -263,7 +264,7 @@ def test_friction_on_the_coulomb_cone_and_dissipation(runs):
         assert np.all(np.einsum("ij,ij->i", np.asarray(st.traction), ds)[slip] > 0)
         D = np.asarray(st.dissipation)
         assert np.all(D >= 0)
-        assert D == pytest.approx(MU * pN * np.linalg.norm(ds, axis=1) * c.area, rel=1e-12, abs=1e-300)
+        assert D == pytest.approx(MU * pN * np.linalg.norm(ds, axis=1) * c.geometry.area, rel=1e-12, abs=1e-300)
     assert slipping > 0
     D = r.column("dissipation")
     assert np.all(np.diff(D) >= 0) and D[-1] > 0
@@ -315,12 +316,12 @@ def test_tangent_of_the_bordered_system_with_sliding_contact(runs, tmp_path, mon
     rec = Recorder(sphere_plane(mu=MU, stop=60.0), tmp_path)
     sim = rec.sim
     checked = []
-    original = simulation.continuation_step
+    original = path_following.continuation_step
 
     def step(bordered, constraint, x, lam, du_prev, set_load_factor, *args):
         Du, dlam, its, norms = original(bordered, constraint, x, lam, du_prev, set_load_factor, *args)
         c = sim.contacts[0]
-        if not checked and np.count_nonzero(np.asarray(c.friction_state(sim.u).state) == SLIP) >= 2:
+        if not checked and np.count_nonzero(np.asarray(c.evaluate(sim.u).state) == SLIP) >= 2:
             problem = sim.problem
             free = np.flatnonzero(~np.isin(np.arange(x.getSize()), np.concatenate(
                 [dfx.bc_dofs(bc) for bc in sim.bcs])))
@@ -342,7 +343,7 @@ def test_tangent_of_the_bordered_system_with_sliding_contact(runs, tmp_path, mon
             checked.append(True)
         return Du, dlam, its, norms
 
-    monkeypatch.setattr(simulation, "continuation_step", step)
+    monkeypatch.setattr(path_following, "continuation_step", step)
     rec.run(monkeypatch)
     assert checked
     orders = []
@@ -360,19 +361,19 @@ def test_a_cut_back_leaves_no_trace_in_the_friction_history(tmp_path, monkeypatc
     mapping with trial slips and is cut back leaves no trace: the run ends
     exactly where a run that took the halved step directly ends."""
     calls = {"n": 0}
-    original = simulation.continuation_step
+    original = path_following.continuation_step
     target = 6  # a step that starts with the shell on the plane and slides
     holder = {}
 
     def untouched(attempt):
         """Run attempt(); the friction history must be the same after it."""
         c = holder["sim"].contacts[0]
-        before = (c.xi.copy(), c.t_old.copy(), c.dissipation, c.lam_committed)
+        before = (c.law.history.positions.copy(), c.law.history.traction.copy(), c.law.dissipation, c.law.history.lam_committed)
         try:
             return attempt()
         finally:
-            assert np.array_equal(c.xi, before[0]) and np.array_equal(c.t_old, before[1])
-            assert (c.dissipation, c.lam_committed) == before[2:]
+            assert np.array_equal(c.law.history.positions, before[0]) and np.array_equal(c.law.history.traction, before[1])
+            assert (c.law.dissipation, c.law.history.lam_committed) == before[2:]
 
     def failing(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it):
         calls["n"] += 1
@@ -391,14 +392,14 @@ def test_a_cut_back_leaves_no_trace_in_the_friction_history(tmp_path, monkeypatc
     ends = []
     for name, wrapper in (("failing", failing), ("halved", halved)):
         calls["n"] = 0
-        monkeypatch.setattr(simulation, "continuation_step", wrapper)
+        monkeypatch.setattr(path_following, "continuation_step", wrapper)
         rec = Recorder(sphere_plane(mu=MU, stop=60.0), tmp_path / name)
         holder["sim"] = rec.sim
         rec.run(monkeypatch)
         c = rec.sim.contacts[0]
         assert rec.writer.steps[target - 2]["wall_closed_nodes"] > 0
         assert rec.writer.steps[target - 1]["wall_slip_nodes"] > 0
-        ends.append((rec.sim.u.x.array.copy(), c.xi.copy(), c.t_old.copy(), c.dissipation,
+        ends.append((rec.sim.u.x.array.copy(), c.law.history.positions.copy(), c.law.history.traction.copy(), c.law.dissipation,
                      rec.column("load_factor")))
     (u1, xi1, t1, d1, lam1), (u2, xi2, t2, d2, lam2) = ends
     assert len(lam1) == len(lam2) and np.allclose(lam1, lam2, rtol=1e-12, atol=0)

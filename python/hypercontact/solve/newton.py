@@ -1,14 +1,15 @@
 """The nonlinear system δW + δW_C = 0 as a PETSc SNES problem.
 
-One Newton iteration (DESIGN.md): dolfinx assembles the volume residual and
-tangent, the contact objects add theirs into the same Vec / Mat, and the
+One Newton iteration (docs/design.md): dolfinx assembles the volume residual
+and tangent; each contact is evaluated once at the iterate (prepare) and adds
+its residual and tangent from that evaluation into the same Vec / Mat; the
 Dirichlet conditions are applied last so constrained rows stay exact.
 """
 import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from . import _dolfinx as dfx
+from .. import _dolfinx as dfx
 
 
 class Problem:
@@ -16,10 +17,10 @@ class Problem:
 
     def __init__(self, u, R, J, bcs, contacts, timers):
         self.u, self.bcs, self.contacts, self.timers = u, bcs, contacts, timers
-        # Rigid contacts add into the local residual array (their slave
-        # node's own dofs); deformable ones add rows anywhere, by global index.
-        self.local_contacts = [c for c in contacts if not getattr(c, "global_assembly", False)]
-        self.global_contacts = [c for c in contacts if getattr(c, "global_assembly", False)]
+        # Rigid contacts add into the local residual array (their slave node's
+        # own dofs); deformable ones add rows anywhere, by global index.
+        self.local_contacts = [c for c in contacts if not c.deformable]
+        self.global_contacts = [c for c in contacts if c.deformable]
         self.R = dfx.compile_form(R)
         self.J = dfx.compile_form(J)
         self.A = dfx.create_matrix(self.J)
@@ -34,6 +35,7 @@ class Problem:
             self.near_nullspace = rigid_body_modes(u.function_space, self.A)
             self.A.setNearNullSpace(self.near_nullspace)
         self._volume_csr = None
+        self._prepared_at = None  # the owned unknowns the contacts were last evaluated at
         self.pattern_builds = 0
 
     def rebuild_pattern(self):
@@ -83,31 +85,50 @@ class Problem:
         x.copy(self.u.vector)
         dfx.update_ghosts(self.u)
 
-    def residual(self, snes, x, b):
+    def prepare_contacts(self):
+        """Evaluate every contact once at the current u (collective)."""
+        if not self.contacts:
+            return
+        with self.timers("contact"):
+            for c in self.contacts:
+                c.prepare(self.u)
+        self._prepared_at = self.u.vector.array_r.copy()
+
+    def residual(self, snes, x, b, with_contacts=True):
+        """b = R(x); ``with_contacts=False``: the body alone (volume and loads)."""
         self._update_u(x)
+        contacts = self.contacts if with_contacts else []
+        if contacts:
+            self.prepare_contacts()
         with self.timers("volume assembly"):
             dfx.assemble_volume_residual(b, self.R)
-        if self.local_contacts:
+        local = [c for c in self.local_contacts if c in contacts]
+        if local:
             with self.timers("contact"), b.localForm() as bl:
-                array = bl.array_w
-                for c in self.local_contacts:
-                    c.add_residual(self.u, array)
+                for c in local:
+                    c.add_residual(bl.array_w)
         with self.timers("volume assembly"):
             dfx.finish_residual(b, self.J, self.bcs, x)
-        if self.global_contacts:
+        if contacts and self.global_contacts:
             with self.timers("contact"):
                 for c in self.global_contacts:
-                    c.add_residual_global(self.u, b)
+                    c.add_residual(b)
                 b.assemblyBegin()
                 b.assemblyEnd()
 
     def jacobian(self, snes, x, A, P):
+        """A = ∂R/∂x at x; the contacts' tangents come from their evaluation at x
+        (made again if the last residual was evaluated elsewhere)."""
+        if self.contacts and (self._prepared_at is None or
+                              not np.array_equal(self._prepared_at, x.array_r)):
+            self._update_u(x)
+            self.prepare_contacts()
         with self.timers("volume assembly"):
             dfx.assemble_tangent(A, self.J, self.bcs)
         if self.contacts:
             with self.timers("contact"):
                 for c in self.contacts:
-                    c.add_tangent(self.u, A)
+                    c.add_tangent(A)
         with self.timers("volume assembly"):
             A.assemble()
 

@@ -17,7 +17,7 @@ import numpy as np
 import ufl
 from mpi4py import MPI
 
-from . import _dolfinx as dfx
+from .. import _dolfinx as dfx
 
 
 def p_wave_modulus(law, params):
@@ -36,12 +36,9 @@ def p_wave_modulus(law, params):
 def layer_thickness(V, facet_tags, tag):
     """h = Σ V_e / Σ A_f over the slave facets with tag and their cells."""
     mesh = V.mesh
-    tdim = mesh.topology.dim
     facets = dfx.facets_with_tag(facet_tags, tag)
-    mesh.topology.create_connectivity(tdim - 1, tdim)
-    f2c = mesh.topology.connectivity(tdim - 1, tdim)
     n_owned = dfx.num_owned_cells(mesh)
-    cells = np.unique([f2c.links(f)[0] for f in facets]).astype(np.int32) if len(facets) else np.zeros(0, np.int32)
+    cells = np.unique(dfx.facet_cells(mesh, facets)).astype(np.int32)
     cells = cells[cells < n_owned]
     DG0 = dfx.fem.FunctionSpace(mesh, ("DG", 0))
     vol = dfx.assemble_vector_owned(dfx.compile_form(ufl.TestFunction(DG0) * ufl.dx))

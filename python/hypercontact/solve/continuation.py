@@ -17,8 +17,8 @@ PETSc 3.18 has no arc-length SNES; this is the project's own.
 import numpy as np
 from petsc4py import PETSc
 
-from . import _dolfinx as dfx
-from .problem import set_prefixed_options
+from .. import _dolfinx as dfx
+from .newton import set_prefixed_options
 
 
 class ContinuationFailure(RuntimeError):
@@ -55,13 +55,7 @@ class Bordered:
     def body_residual_norm(self, x):
         """|R(x)| of the body alone: volume and loads, without the contacts'
         terms (the same as assemble's |R| when there is no contact)."""
-        p = self.problem
-        contacts = p.local_contacts, p.global_contacts
-        p.local_contacts, p.global_contacts = [], []
-        try:
-            p.residual(None, x, self.R)
-        finally:
-            p.local_contacts, p.global_contacts = contacts
+        self.problem.residual(None, x, self.R, with_contacts=False)
         return self.R.norm()
 
     def tangent_direction(self):

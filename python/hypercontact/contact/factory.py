@@ -1,0 +1,110 @@
+"""The scene's contact entries → :class:`~.pair.Contact` objects.
+
+Values derived from the scene — the automatic penalty ε_N, the automatic gap
+tolerance of the augmented Lagrangian, the smoothing band δ — are returned in
+:class:`ContactSettings` beside the contacts; the scene is not changed."""
+from dataclasses import dataclass
+
+from .. import _cpp
+from . import penalty
+from .kernels import surface_arrays
+from .enforcement import AugmentedLagrangian, Penalty
+from .law import Coulomb, Frictionless
+from .pair import Contact
+from .rigid import RigidFrictionHistory, RigidObstacle
+from .surface import SurfaceFrictionHistory, SurfacePairing
+
+
+@dataclass(frozen=True)
+class ContactSettings:
+    """What a contact entry became: its penalties, gap tolerance (augmented
+    Lagrangian, else None) and smoothing band δ, and how ε_N was found."""
+
+    name: str
+    eps_n: float
+    eps_t: float
+    gap_tolerance: float | None
+    smoothing: float
+    penalty_note: str | None
+
+
+def _penalty(entry, slave_tag, material, V, facet_tags):
+    """(ε_N, note): the scene's ε_N, or penalty_factor × M / h when it is 0 (penalty.py)."""
+    if entry["eps_n"] != 0:
+        return float(entry["eps_n"]), None
+    eps, M, h = penalty.automatic_penalty(entry["penalty_factor"], material["law"], material["parameters"],
+                                          V, facet_tags, slave_tag)
+    return eps, f"{entry['name']}: ε_N = {eps:.4g} = {entry['penalty_factor']:g} × M {M:.4g} / h {h:.4g}"
+
+
+def _gap_tolerance(entry, V, facet_tags, slave_tags):
+    """The augmented Lagrangian's tolerance: the scene's, or 1e-3 of the first element layer."""
+    if entry["enforcement"] != "augmented_lagrangian":
+        return None
+    if entry["gap_tolerance"] > 0:
+        return float(entry["gap_tolerance"])
+    return 1e-3 * min(penalty.layer_thickness(V, facet_tags, t) for t in slave_tags)
+
+
+def _enforcement(settings, entry, num_points):
+    if settings.gap_tolerance is None:
+        return Penalty(num_points)
+    return AugmentedLagrangian(num_points, settings.gap_tolerance, entry["max_augmentations"])
+
+
+def _surface_law(entry, settings, geometry, comm):
+    if entry["mu"] == 0:
+        return Frictionless()
+    if geometry.nodes is None:
+        raise ValueError(f"contact {settings.name!r}: friction against a surface needs nodal integration")
+    law = Coulomb(entry["mu"], settings.eps_t, SurfaceFrictionHistory(geometry), comm)
+    # the history before any load: where each point is paired in the reference configuration
+    geometry.candidates = geometry.search(geometry.X)
+    h = law.history
+    state = _cpp.evaluate_surface_friction(
+        geometry.X, geometry.point_nodes, geometry.point_weights, geometry.point_area, geometry.facets,
+        geometry.edge_neighbour, *geometry.candidates, settings.eps_n, geometry.dofs, h.facet, h.xi, h.traction,
+        law.eps_t, law.mu, smoothing=settings.smoothing)
+    h.store(surface_arrays(state, frictional=True))
+    geometry.candidates = None
+    return law
+
+
+def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of):
+    """(contacts, settings) of the scene's [[contact]] entries, in order (a
+    two-pass surface contact gives two, the second named <name>_pass2).
+    ``tag_of(surface, key)``: the facet tag of a named surface (raising a
+    SceneError naming ``key``); ``material_of(surface)``: the material entry
+    of the body a slave surface belongs to (for the automatic ε_N)."""
+    contacts, settings = [], []
+    for i, entry in enumerate(scene["contact"]):
+        slave = tag_of(entry["surface"], f"contact[{i}].surface")
+        eps_n, note = _penalty(entry, slave, material_of(entry["surface"]), V, facet_tags)
+        if entry["obstacle"] != "surface":
+            pairs = [(entry["name"], [slave], None)]
+        else:
+            masters = [tag_of(m, f"contact[{i}].master") for m in entry["master"].split("+")]
+            pairs = [(entry["name"], [slave], masters)]
+            if entry["passes"] == 2:  # two-pass: each surface is slave once (frictionless)
+                pairs.append((f"{entry['name']}_pass2", masters, [slave]))
+        gap_tolerance = _gap_tolerance(entry, V, facet_tags, [slave])
+        for k, (name, slaves, masters) in enumerate(pairs):
+            s = ContactSettings(name, eps_n, float(entry["eps_t"] or eps_n), gap_tolerance,
+                                penalty.smoothing_band(entry, V, facet_tags, slaves), note if k == 0 else None)
+            contacts.append(_make(entry, s, V, facet_tags, slaves, masters, constrained, second=k > 0))
+            settings.append(s)
+    return contacts, settings
+
+
+def _make(entry, s, V, facet_tags, slaves, masters, constrained, second):
+    comm = V.mesh.comm
+    if masters is None:
+        geometry = RigidObstacle(entry, V, facet_tags, slaves[0], constrained)
+        law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if entry["mu"] > 0
+               else Frictionless())
+    else:
+        geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
+                                  entry["capture"], s.name)
+        law = Frictionless() if second else _surface_law(entry, s, geometry, comm)
+    enforcement = _enforcement(s, entry, len(geometry.point_area))
+    return Contact(s.name, geometry, law, enforcement, s.eps_n, s.smoothing, entry)

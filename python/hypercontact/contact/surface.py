@@ -1,0 +1,246 @@
+"""A deformable master surface as contact geometry: slave points of one
+surface against the facets of another surface of the same mesh (possibly of
+another body), node-to-surface with closest-point projection.
+
+Data layout. The two surfaces, small next to the volume, are *shared across
+ranks*: every rank holds the reference coordinates, global dof numbers and,
+at each evaluation, the current displacement of every node of both surfaces
+(the "contact nodes", ordered by global node index). Each slave point is
+evaluated once, on the rank that owns it (its slave node, or for Gauss-point
+integration its slave facet), and adds its rows and columns with global
+indices into the PETSc vector and matrix; rows owned by another rank travel
+with PETSc's assembly.
+
+Slave points. Nodal integration (the paper): one point per slave node with
+the node's area. Gauss-point integration: the 2 × 2 Gauss points of every
+slave facet, each a combination Σ M_i x_i of the facet's nodes with weight
+det J × w_q.
+
+Pairing. The broad phase (C++ ``find_candidates``) lists for every slave
+point the master facets whose box, inflated by the capture distance, contains
+it; the narrow phase (C++) projects the point onto each candidate and keeps
+the closest. The candidates are found at the start of a load step and fix the
+matrix pattern (slave point × candidate facet nodes); after the step has
+converged they are searched again, and if a point has a candidate that was
+not in the pattern the pattern grows (:meth:`SurfacePairing.update_pairing`).
+"""
+import numpy as np
+from mpi4py import MPI
+
+from .. import _cpp
+from .. import _dolfinx as dfx
+from .surface_mesh import edge_neighbours, gauss_points, nodal_areas, surface_facets
+
+#: C++ PairingStatus::Paired
+PAIRED = 2
+
+
+class SurfacePairing:
+    """Slave points of the slave surfaces and the facets of the master surfaces."""
+
+    #: adds rows anywhere, by global index: the matrix pattern follows the pairing
+    assembly = "global"
+    scratch_size = None
+
+    def __init__(self, V, facet_tags, slave_tags, master_tags, constrained, integration, capture, name):
+        self.comm = comm = V.mesh.comm
+        gidx = dfx.global_node_indices(V).astype(np.int64)
+        slave_quads = np.concatenate([surface_facets(V, facet_tags, t) for t in slave_tags])
+        master_quads = np.concatenate([surface_facets(V, facet_tags, t) for t in master_tags])
+        self._share_contact_nodes(V, gidx, np.concatenate([slave_quads.ravel(), master_quads.ravel()]), constrained)
+
+        def to_contact(local_nodes):
+            return np.searchsorted(self.global_ids, gidx[local_nodes]).astype(np.int32)
+
+        mq = to_contact(master_quads.ravel()).reshape(-1, 4)  # each boundary facet is on one rank
+        self.facets = np.ascontiguousarray(np.concatenate(comm.allgather(mq))) if comm.size > 1 else mq
+        if len(self.facets) == 0:
+            raise ValueError(f"contact {name!r}: the master surface has no facets")
+        self.edge_neighbour = edge_neighbours(self.facets)
+        if integration == "nodal":
+            area = sum(nodal_areas(V, facet_tags, t) for t in slave_tags)
+            nodes = np.flatnonzero(area > 0.0)
+            self.point_nodes = np.full((len(nodes), 4), -1, np.int32)
+            self.point_nodes[:, 0] = to_contact(nodes)
+            self.point_weights = np.zeros((len(nodes), 4))
+            self.point_weights[:, 0] = 1.0
+            self.point_area = area[nodes].copy()
+            self.nodes = nodes.astype(np.int32)
+        else:
+            sq = to_contact(slave_quads.ravel()).reshape(-1, 4)
+            self.point_nodes, self.point_weights, self.point_area = gauss_points(sq, self.X)
+            self.nodes = None
+        self.num_points = comm.allreduce(len(self.point_area), op=MPI.SUM)
+        size = np.linalg.norm(self.X[self.facets[:, 2]] - self.X[self.facets[:, 0]], axis=1).max()
+        self.capture = float(capture) if capture > 0 else 1.0 * size
+        self.candidates = None  # (offsets, indices) of the current pairing: the matrix pattern
+        self.extra_nodes = None  # callable: further (point, contact node) couplings (friction history)
+        self.repairings = 0
+        self.load_factor = 0.0
+
+    def _share_contact_nodes(self, V, gidx, local_nodes, constrained):
+        """Every node of either surface, known on all ranks: global ids, reference coordinates
+        and global dofs (−1 where constrained), ordered by global id."""
+        comm, n_owned = self.comm, dfx.num_owned_nodes(V)
+        local_ids = np.unique(gidx[local_nodes])
+        all_ids = np.unique(np.concatenate(comm.allgather(local_ids))) if comm.size > 1 else local_ids
+        self.num_nodes = len(all_ids)
+        self.owned_local = np.flatnonzero(np.isin(gidx[:n_owned], all_ids)).astype(np.int32)
+        data = comm.allgather((gidx[self.owned_local], dfx.node_coordinates(V)[self.owned_local],
+                               constrained.reshape(-1, 3)[self.owned_local]))
+        ids = np.concatenate([d[0] for d in data])
+        order = np.argsort(ids)
+        assert np.array_equal(ids[order], all_ids), "every contact node must have one owner"
+        self._gather_order = order
+        self.X = np.ascontiguousarray(np.concatenate([d[1] for d in data])[order])
+        dofs = 3 * all_ids[:, None] + np.arange(3)
+        dofs[np.concatenate([d[2] for d in data])[order]] = -1  # constrained: Dirichlet rows stay exact
+        self.dofs = np.ascontiguousarray(dofs.astype(np.int32))
+        self.global_ids = all_ids
+
+    def set_load_factor(self, load_factor):
+        """The master moves with the solution: nothing depends on λ here."""
+        self.load_factor = load_factor
+
+    def displacement(self):
+        return 0.0
+
+    # --- coordinates -----------------------------------------------------------
+    def coordinates(self, u):
+        """Current coordinates of all contact nodes (every rank). Collective."""
+        mine = np.ascontiguousarray(u.x.array.reshape(-1, 3)[self.owned_local])
+        parts = self.comm.allgather(mine) if self.comm.size > 1 else [mine]
+        return np.ascontiguousarray(self.X + np.concatenate(parts)[self._gather_order])
+
+    def slave_points(self, x):
+        """Positions of this rank's slave points at contact-node coordinates x."""
+        nodes = np.where(self.point_nodes >= 0, self.point_nodes, 0)
+        return np.ascontiguousarray(np.einsum("pa,pak->pk", self.point_weights, x[nodes]))
+
+    def point_coordinates(self, u):
+        """(reference, current) coordinates of this rank's slave points. Collective."""
+        return self.slave_points(self.X), self.slave_points(self.coordinates(u))
+
+    def field_nodes(self):
+        """Process-local node of each slave point, or None (Gauss points have no node)."""
+        return self.nodes
+
+    def point_ids(self):
+        """Global id of each slave point's (first) slave node."""
+        return self.global_ids[self.point_nodes[:, 0]].astype(np.int64)
+
+    # --- pairing and pattern ---------------------------------------------------
+    def search(self, x):
+        """Broad phase at contact-node coordinates x: (offsets, indices) of candidate facets."""
+        return _cpp.find_candidates(self.slave_points(x), x, self.facets, self.capture)
+
+    def update_pairing(self, u, fresh):
+        """With ``fresh`` (a step starts): search at u and make it the pairing.
+        Otherwise (after a converged solve): search again and add the facets
+        outside the pairing to it (the union, so that a point on the border of
+        two facets keeps both). Returns whether the pairing changed (all ranks)."""
+        new = self.search(self.coordinates(u))
+        if fresh:
+            same = self.candidates is not None and all(np.array_equal(a, b) for a, b in zip(new, self.candidates))
+            changed = not self.comm.allreduce(bool(same), op=MPI.LAND)
+            if changed:
+                self.candidates = new
+            return changed
+        n_points, n_facets = len(self.point_area), len(self.facets)
+
+        def keys(csr):
+            offsets, idx = csr
+            return np.repeat(np.arange(n_points, dtype=np.int64), np.diff(offsets)) * n_facets + idx
+
+        old, new = keys(self.candidates), keys(new)
+        changed = self.comm.allreduce(int(np.count_nonzero(~np.isin(new, old))), op=MPI.SUM) > 0
+        if changed:
+            merged = np.union1d(old, new)
+            counts = np.bincount(merged // n_facets, minlength=n_points)
+            offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+            self.candidates = (offsets, (merged % n_facets).astype(np.int32))
+            self.repairings += 1
+        return changed
+
+    def point_node_pairs(self, extra=None):
+        """(point, contact node) pairs: each point's slave nodes, its candidate
+        facets' nodes, and ``extra`` pairs (the friction history's facets)."""
+        offsets, cand = self.candidates
+        n_points = len(self.point_area)
+        per_candidate = np.repeat(np.arange(n_points), np.diff(offsets))
+        points = [np.repeat(np.arange(n_points), 4), np.repeat(per_candidate, 4)]
+        nodes = [self.point_nodes.ravel(), self.facets[cand].ravel()]
+        if extra is not None:
+            points.append(extra[0])
+            nodes.append(extra[1])
+        return np.concatenate(points), np.concatenate(nodes)
+
+    def couplings(self, extra=None):
+        """Global dof pairs (rows, cols) this rank's points add to the matrix:
+        every dof of a point's nodes with every other; constrained dofs left
+        out. Vectorised: a self-join per point."""
+        points, nodes = self.point_node_pairs(extra)
+        keep = nodes >= 0
+        key = np.unique(points[keep].astype(np.int64) * self.num_nodes + nodes[keep])
+        P, N = key // self.num_nodes, key % self.num_nodes
+        counts = np.bincount(P, minlength=len(self.point_area))
+        starts = np.cumsum(counts) - counts
+        rep = counts[P]
+        rows = np.repeat(N, rep)
+        within = np.arange(rep.sum()) - np.repeat(np.cumsum(rep) - rep, rep)
+        cols = N[np.repeat(starts[P], rep) + within]
+        R = np.repeat(self.dofs[rows], 3, axis=1).ravel()
+        C = np.tile(self.dofs[cols], (1, 3)).ravel()
+        ok = (R >= 0) & (C >= 0)
+        return R[ok].astype(np.int64), C[ok].astype(np.int64)
+
+    # --- what an evaluation says ------------------------------------------------
+    def active(self, state, augmented):
+        """Points active in the evaluation: g ≤ 0, or (augmented) p_N > 0."""
+        return np.flatnonzero(state.pressure > 0.0) if augmented else np.flatnonzero(state.gap <= 0.0)
+
+    closed = active
+
+    def max_penetration(self, state):
+        """Largest penetration ⟨−g⟩ over the paired slave points (all ranks)."""
+        gap = state.gap[state.status == PAIRED]
+        local = float(max(0.0, -gap.min())) if len(gap) else 0.0
+        return self.comm.allreduce(local, op=MPI.MAX)
+
+
+class SurfaceFrictionHistory:
+    """Per slave point, a *master material point* — the facet the point was
+    paired with at the last converged step and ξ* there — and that step's
+    tangential traction t. The kernel places the old point at the old facet's
+    current nodes, so a master that moves or deforms under a sticking point
+    creates no trial traction. Points off the master or without a candidate
+    store none (facet −1: the kernel then takes the current point, t = 0)."""
+
+    def __init__(self, geometry):
+        n = len(geometry.point_area)
+        self.geometry = geometry
+        self.facet = np.full(n, -1, np.int32)
+        self.xi = np.zeros((n, 2))
+        self.traction = np.zeros((n, 3))
+
+    def store(self, state, x=None):
+        paired = state.status == PAIRED
+        self.facet = np.ascontiguousarray(np.where(paired, state.facet, -1).astype(np.int32))
+        self.xi = np.ascontiguousarray(np.where(paired[:, None], state.xi, 0.0))
+        self.traction = np.ascontiguousarray(np.where(paired[:, None], state.traction, 0.0))
+
+    def rebase(self):
+        pass
+
+    def pattern_nodes(self):
+        """(point, contact node) pairs of the old facets (the friction tangent has their columns)."""
+        has = np.flatnonzero(self.facet >= 0)
+        return np.repeat(has, 4), self.geometry.facets[self.facet[has]].ravel()
+
+    def state_dict(self):
+        return {}, {"facet": self.facet, "xi": self.xi, "traction": self.traction}
+
+    def load_state_dict(self, meta, arrays):
+        self.facet = np.ascontiguousarray(arrays["facet"], dtype=np.int32)
+        self.xi = np.ascontiguousarray(arrays["xi"], dtype=float)
+        self.traction = np.ascontiguousarray(arrays["traction"], dtype=float)

@@ -1,0 +1,117 @@
+"""A scene → the :class:`Model`: everything that is built, built once, in
+the order it depends on: body (mesh and named surfaces), volume forms,
+constraints, loads, contacts, probes, the Newton problem."""
+import numpy as np
+import ufl
+from mpi4py import MPI
+
+from .. import _dolfinx as dfx
+from .. import geometry
+from ..contact import build_contacts
+from ..scene import SceneError
+from ..solve.newton import Problem
+from .effects import describe_effects
+from .inversion import InversionCheck
+from .loading import Constraints, load_terms
+from .probes import Probe
+from .volume import build_volume
+
+
+def build_body(scene, comm):
+    """The mesh with its named surfaces and regions."""
+    mesh = scene["mesh"]
+    if scene["body"] or any(g != 1.0 for g in mesh["grading"]):
+        names = ["body"] + [b["name"] for b in scene["body"]]
+        if "body" in names[1:]:
+            raise SceneError("scene key 'body': the name 'body' is taken by the [mesh] body")
+        return geometry.build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in scene["body"]])
+    if mesh["builder"] == "file":
+        return geometry.read_msh(comm, mesh["file"])
+    if mesh["builder"] == "shell_octant":
+        from ..shell import build_shell_octant
+
+        return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
+    return geometry.build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
+
+
+class Model:
+    """What a scene builds. ``law``: a Python ψ(F, **params) from a driver
+    script in place of the scene's material law."""
+
+    def __init__(self, scene, comm, timers, law=None, map_mesh=None):
+        """``map_mesh(body)``: moves the mesh nodes (body.mesh.geometry.x) before
+        anything is built on it (e.g. a box bent into a shell)."""
+        self.scene, self.comm = scene, comm
+        self.body = build_body(scene, comm)
+        if map_mesh is not None:
+            map_mesh(self.body)
+        if scene["mesh"]["perturbation"] > 0:
+            dfx.perturb_coordinates(self.body.mesh, scene["mesh"]["perturbation"])
+        vol = self.volume = build_volume(scene, self.body, law)
+        self.w, self.V, self.u, self._u_dofs, self.stress = vol.w, vol.V, vol.u, vol.u_dofs, vol.stress
+        space = self.w.function_space.sub(0) if vol.u_dofs is not None else self.w.function_space
+        self.constraints = Constraints(scene, self.w, space, self.body.facet_tags, self.tag, self.body.mesh)
+        self.bcs = self.constraints.bcs
+        R, J = self._with_loads(vol)
+        if scene["steps"]["control"] != "load":
+            for i, c in enumerate(scene["contact"]):
+                if c["obstacle"] == "surface":
+                    raise SceneError(f"scene key 'contact[{i}].obstacle': contact with a deformable surface needs "
+                                     "steps.control = \"load\" (continuation with it is not supported yet)")
+        self.contacts, self.contact_settings = build_contacts(
+            scene, self.V, self.body.facet_tags, self.tag, self.constraints.constrained, self.material_of)
+        size = comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
+        self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in scene["output"]["probes"].items()}
+        self.problem = Problem(self.w, R, J, self.bcs, self.contacts, timers)
+        self.inversion_check = InversionCheck(self.u, scene["discretisation"]["quadrature_degree"])
+        self.effects = describe_effects(scene, vol.description, self.contact_settings, self.constraints.num_moving,
+                                        dfx.num_global_dofs(self.w.function_space))
+
+    def _with_loads(self, vol):
+        """R + λ q and its tangent; q (kept for continuation) and the λ Constant."""
+        self.load_factor = dfx.constant(self.body.mesh, 0.0)
+        self.q_form = load_terms(self.scene, self.body.mesh, self.body.facet_tags, self.tag, vol.trial_u, vol.test_u)
+        if self.q_form is None:
+            return vol.R, vol.J
+        dw = ufl.TrialFunction(self.w.function_space)
+        return (vol.R + self.load_factor * self.q_form,
+                vol.J + self.load_factor * ufl.derivative(self.q_form, self.w, dw))
+
+    def tag(self, surface, key):
+        """The facet tag of a named surface; SceneError naming ``key`` if there is none."""
+        if surface not in self.body.surfaces:
+            raise SceneError(f"scene key '{key}': the mesh has no surface {surface!r} "
+                             f"(it has {', '.join(sorted(self.body.surfaces))})")
+        return self.body.surfaces[surface]
+
+    def material_of(self, surface):
+        """The material entry of the body a surface ('<body>.<surface>' or the [mesh] body's) belongs to."""
+        prefix = surface.split(".")[0] if "." in surface else None
+        return next((b["material"] for b in self.scene["body"] if b["name"] == prefix), self.scene["material"])
+
+    def update_pairing(self, fresh):
+        """Deformable contacts: search at u (``fresh``: a new pairing; else grow
+        it after a converged solve); a changed pairing rebuilds the matrix
+        pattern (problem.A is replaced). Returns whether it changed."""
+        changed = False
+        for c in self.problem.global_contacts:
+            changed |= c.update_pairing(self.u, fresh)
+        if changed:
+            self.problem.rebuild_pattern()
+        return changed
+
+    def set_load_factor(self, lam):
+        self.load_factor.value = lam
+        self.constraints.set_load_factor(lam)
+        for c in self.contacts:
+            c.set_load_factor(lam)
+
+    def sync_displacement(self):
+        """u from the unknown (a no-op unless the formulation is mixed)."""
+        if self._u_dofs is not None:
+            self.u.x.array[:] = self.w.x.array[self._u_dofs]
+
+    def unknown_dof(self, node, axis):
+        """Process-local index in the unknown vector of u_axis at a node of V."""
+        dof = 3 * node + axis
+        return int(self._u_dofs[dof]) if self._u_dofs is not None else dof

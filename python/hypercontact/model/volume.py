@@ -1,0 +1,116 @@
+"""The volume of the body: the unknown, its displacement view and the
+residual and tangent forms of the chosen formulation (displacement, selective
+reduced integration, mixed u–p), one law per body."""
+from dataclasses import dataclass
+
+import numpy as np
+import ufl
+
+from .. import _dolfinx as dfx
+from ..forms import materials, volume
+from ..results import first_piola_stress
+from ..scene import SceneError
+from .material import resolve_material
+
+
+@dataclass
+class Volume:
+    w: object  # the unknown (u, or (u, p) in the mixed formulation)
+    V: object  # the displacement space
+    u: object  # the displacement (w itself, or refreshed from w after each solve)
+    u_dofs: object  # positions of u's dofs in w (None unless mixed)
+    R: object
+    J: object
+    trial_u: object  # u in UFL (a part of w in the mixed formulation)
+    test_u: object
+    description: str
+    stress: object  # stress(u) → P, for the results
+
+
+def build_volume(scene, body, law=None):
+    """The Volume of the scene's material(s) and discretisation on ``body``."""
+    disc, mat = scene["discretisation"], scene["material"]
+    psi, params, desc = resolve_material(mat, law)
+    name = mat["law"]
+    if disc["formulation"] != "displacement" and (law is not None or name not in materials.ISOCHORIC):
+        raise SceneError(f"scene key 'discretisation.formulation': {disc['formulation']!r} needs a built-in "
+                         f"law ({', '.join(materials.ISOCHORIC)}), found {name!r}")
+    if np.isinf(params.get("K", 0.0)) and disc["formulation"] != "mixed":
+        raise SceneError("scene key 'material.parameters.K': K = inf (incompressible) needs "
+                         "discretisation.formulation = \"mixed\"")
+    if scene["contact"] and (disc["degree"] != 1 or disc["formulation"] == "mixed"):
+        raise SceneError("scene key 'discretisation': contact needs the displacement or sri "
+                         "formulation with degree 1")
+    if disc["formulation"] == "mixed":
+        return _mixed(body, name, params, desc, disc["quadrature_degree"])
+    V = dfx.vector_space(body.mesh, disc["degree"])
+    u = dfx.fem.Function(V, name="displacement")
+    if scene["body"]:
+        R, J, desc, stress = _several_bodies(scene, body, u, law, psi, params, desc)
+    elif disc["formulation"] == "sri":
+        iso_params, K, vol = materials.split_volumetric(params)
+        R, J = volume.selective_reduced_forms(u, materials.ISOCHORIC[name], iso_params, K, disc["quadrature_degree"],
+                                              volumetric=vol)
+        desc += ", selective reduced integration"
+        stress = first_piola_stress(psi, **params)
+    else:
+        R, J = volume.displacement_forms(u, psi, params, disc["quadrature_degree"])
+        stress = first_piola_stress(psi, **params)
+    return Volume(u, V, u, None, R, J, u, ufl.TestFunction(V), desc, stress)
+
+
+def _mixed(body, name, params, desc, qdeg):
+    if qdeg < 4:
+        raise SceneError("scene key 'discretisation.quadrature_degree': the mixed formulation's "
+                         f"quadratic hexahedra need 3×3×3 Gauss points (degree >= 4), found {qdeg}: "
+                         "fewer leave zero-energy modes")
+    iso_params, K, vol = materials.split_volumetric(params)
+    w = dfx.fem.Function(dfx.taylor_hood_space(body.mesh), name="solution")
+    V, u_dofs = dfx.collapse(w.function_space.sub(0))
+    u = dfx.fem.Function(V, name="displacement")
+    R, J = volume.mixed_up_forms(w, materials.ISOCHORIC[name], iso_params, K, qdeg, vol)
+    p = ufl.split(w)[1]
+
+    def stress(u_out):
+        """P = ∂ψ_iso/∂F + p J G'(J) F⁻ᵀ with the pressure unknown p."""
+        F = ufl.variable(ufl.Identity(3) + ufl.grad(u_out))
+        P_iso = ufl.diff(materials.ISOCHORIC[name](F, **iso_params), F)
+        return P_iso + volume.mixed_pressure_stress(F, p, K, vol)
+
+    return Volume(w, V, u, u_dofs, R, J, ufl.split(w)[0], ufl.split(ufl.TestFunction(w.function_space))[0],
+                  desc + ", mixed u–p (Taylor–Hood Q2–Q1)", stress)
+
+
+def _several_bodies(scene, body, u, law, psi, params, desc):
+    """Volume forms summed over the bodies, each with its own law on its own
+    cells; the stress for the results picked per cell by body."""
+    disc = scene["discretisation"]
+    dx = ufl.Measure("dx", domain=body.mesh, subdomain_data=body.cell_tags)
+    laws = [(psi, params, scene["material"]["law"], desc)]
+    for b in scene["body"]:
+        b_psi, b_params, b_desc = resolve_material(b["material"])
+        laws.append((b_psi, b_params, b["material"]["law"], b_desc))
+    R = J = None
+    stresses = []
+    DG0 = dfx.fem.FunctionSpace(body.mesh, ("DG", 0))
+    for (b_psi, b_params, name, _), (region, tag) in zip(laws, body.regions.items()):
+        if disc["formulation"] == "sri":
+            iso, K, vol = materials.split_volumetric(b_params)
+            Rb, Jb = volume.selective_reduced_forms(u, materials.ISOCHORIC[name], iso, K,
+                                                    disc["quadrature_degree"], dx(tag), vol)
+        else:
+            Rb, Jb = volume.displacement_forms(u, b_psi, b_params, disc["quadrature_degree"], dx(tag))
+        R, J = (Rb, Jb) if R is None else (R + Rb, J + Jb)
+        chi = dfx.fem.Function(DG0)
+        chi.x.array[:] = 0.0
+        chi.x.array[body.cell_tags.indices[body.cell_tags.values == tag]] = 1.0
+        chi.x.scatter_forward()
+        stresses.append((chi, first_piola_stress(b_psi, **b_params)))
+
+    def stress(u_out):
+        return sum(chi * P(u_out) for chi, P in stresses)
+
+    text = "; ".join(f"{region}: {d}" for (_, _, _, d), region in zip(laws, body.regions))
+    if disc["formulation"] == "sri":
+        text += ", selective reduced integration"
+    return R, J, f"{len(laws)} bodies ({text})", stress

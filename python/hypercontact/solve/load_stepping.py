@@ -1,0 +1,123 @@
+"""Load control: λ goes 0 → 1 in steps, a Newton solve per step, Δλ cut
+back on failure (:mod:`.step_control`). One attempt at a step is the Newton
+solve, solved again while a deformable contact's pairing grows, then the
+augmented Lagrangian's updates, then the ``fail_attempt`` hook."""
+from mpi4py import MPI
+
+from ..model.inversion import describe_inverted
+from .augmented import augment_until_within
+from .newton_solver import NewtonSolver
+from .step_control import LoadStepper
+
+#: reason of an attempt made to fail by the fail_attempt hook
+FORCED_FAILURE = "FORCED_FAILURE"
+
+
+class StepFailure(RuntimeError):
+    """A load step did not converge after the allowed cut-backs."""
+
+
+class LoadStepping:
+    """The load-control driver of a model. ``fail_attempt(step, lam, dlam,
+    attempt) -> bool``: see Simulation."""
+
+    def __init__(self, model, scene, timers, log, fail_attempt=None):
+        self.model, self.scene, self.timers, self.log = model, scene, timers, log
+        self.fail_attempt = fail_attempt
+        self.newton = NewtonSolver(model, scene["solver"], timers)
+        self.augmentations = 0
+
+    def update_pairing(self, fresh):
+        """The model's pairing (Model.update_pairing); a new matrix goes to the solver."""
+        with self.timers("contact search"):
+            changed = self.model.update_pairing(fresh)
+            if changed:
+                self.newton.use_matrix(self.model.problem.A)
+        return changed
+
+    def attempt(self, step, lam, dlam, attempt):
+        """One attempt at λ → λ + Δλ: (converged, Newton iterations, last norms, reason)."""
+        self.model.set_load_factor(lam + dlam)
+        self.update_pairing(fresh=True)
+        ok, its, norms, reason = self.newton.solve()
+        for _ in range(5 if ok else 0):
+            # a point found a master facet outside the pattern: solve again with it
+            if not self.update_pairing(fresh=False):
+                break
+            ok, more, norms, reason = self.newton.solve()
+            its += more
+            if not ok:
+                break
+        self.augmentations = 0
+        if ok:
+            ok, more, self.augmentations, n, r = augment_until_within(
+                self.model.contacts, self.model.problem.prepare_contacts, self.newton.solve, self.log)
+            its += more
+            norms, reason = (n if n is not None else norms), (r if r is not None else reason)
+        forced = self.fail_attempt is not None and bool(self.fail_attempt(step, lam, dlam, attempt))
+        if self.model.comm.allreduce(forced, op=MPI.LOR) and ok:
+            ok, reason = False, FORCED_FAILURE
+        return ok, its, norms, reason
+
+    def failure_story(self, step, lam, dlam, attempt, reason, norms):
+        """What a failed attempt did, for summary.json. Collective."""
+        h = self.newton.history
+        story = {"step": step, "attempt": attempt, "load_factor": lam, "dlam": dlam, "reason": reason,
+                 "snes_reason": self.newton.last_snes_reason, "newton_iterations": self.newton.iterations(),
+                 "residual_norms": list(norms), "update_norms": list(h.update_norms),
+                 "active_set_changes": h.active_set_changes(), "stick_slip_changes": h.stick_slip_changes(),
+                 "augmentations": self.augmentations}
+        story.update(h.flip_story(self.model.u, self.model.comm))
+        if self.newton.inverted is not None:
+            story["inverted_element"] = self.newton.inverted
+        return story
+
+    def run(self, observer, out_dir, state=None):
+        """Solve the load path; ``observer.converged(lam, its, norms, reason,
+        history, controller_state)`` after each converged step, ``observer.failed(story)``
+        after each failed attempt. Raises StepFailure when no cut-back is left."""
+        model, steps = self.model, self.scene["steps"]
+        stepper = LoadStepper.from_scene(steps)
+        if state is not None:
+            stepper.load_state_dict(state)
+            model.set_load_factor(stepper.lam)
+        u_saved = model.w.x.array.copy()
+        while not stepper.done():
+            lam, dlam = stepper.lam, stepper.increment()
+            number = observer.steps_written() + 1
+            ok, its, norms, reason = self.attempt(number, lam, dlam, stepper.cuts)
+            if ok:
+                stepper.converged(its)
+                model.problem.prepare_contacts()  # the converged state: commit and results read it
+                for c in model.contacts:
+                    c.commit()
+                u_saved[:] = model.w.x.array
+                observer.converged(stepper.lam, its, norms, reason, self.newton.history, stepper.state_dict())
+                continue
+            stop = not stepper.can_cut()
+            story = self.failure_story(number, lam, dlam, stepper.cuts, reason, norms)
+            story["outcome"] = "stopped" if stop else "cut back"
+            observer.failed(story)
+            model.w.x.array[:] = u_saved
+            model.sync_displacement()
+            for c in model.contacts:
+                c.restore()
+            self._log_failure(story, lam, dlam, its, reason, stop)
+            if stop:
+                where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
+                cuts = stepper.cuts
+                raise StepFailure(
+                    f"load step from λ = {lam:.6g} did not converge after {cuts} cut-back{'s' * (cuts != 1)} "
+                    f"(last Δλ = {dlam:.3g}, reason {reason}{where}); {observer.steps_written()} converged "
+                    f"step(s) are in {out_dir} (what each failed attempt did: failed_attempts in summary.json)")
+            stepper.failed()
+
+    def _log_failure(self, story, lam, dlam, its, reason, stop):
+        warn = self.scene["steps"]["chatter_warning"]
+        chatter = "".join(f"; the {what} changed in {story[key]} Newton iterations (chattering)"
+                          for what, key in (("contact active set", "active_set_changes"),
+                                            ("stick/slip status", "stick_slip_changes"))
+                          if story[key] >= warn)
+        where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
+        self.log(f"   step at λ = {lam:.4f} + {dlam:.3g} failed ({reason}, {its} its{chatter}{where}); "
+                 + ("no cut-back left" if stop else f"cut back to Δλ = {0.5 * dlam:.3g}"))

@@ -1,0 +1,81 @@
+"""One Newton solve at the current load factor: PETSc SNES on the model's
+Problem, a line-search fallback, the per-iterate monitor and the check that
+no element is inverted."""
+import numpy as np
+from mpi4py import MPI
+
+from .. import _dolfinx as dfx
+from ..model.inversion import INVERTED_ELEMENT
+from .monitor import IterationHistory
+from .newton import converged_reason_name, make_snes, residual_norms_of, set_line_search
+
+class NewtonSolver:
+    """SNES (newtonls) with the scene's solver settings. Line search "auto":
+    full steps with rigid obstacles, backtracking with a deformable master;
+    a solve that fails with one is tried again from the same start with the
+    other before the step is cut back (which converges depends on the contact:
+    full steps on the paper's punch, where backtracking crawls; backtracking
+    where full steps cycle, on Hertz or the ironing die's rim)."""
+
+    def __init__(self, model, solver, timers):
+        self.model, self.timers = model, timers
+        deformable = any(c.deformable for c in model.contacts)
+        self.snes = make_snes(model.problem, model.comm, solver, deformable=deformable)
+        self.fallback = None
+        if solver["linesearch"] == "auto" and model.contacts:
+            self.fallback = "basic" if deformable else "bt"
+        self.history = IterationHistory(model.contacts)
+        self.snes.setConvergenceHistory(length=solver["max_it"] + 1, reset=True)
+        self.snes.setMonitor(self.history.monitor)
+        self.linear_iterations = []  # Krylov iterations of each Newton solve
+        self.inverted = None  # InversionCheck's answer at the end of the last solve
+        self.last_snes_reason = None
+
+    def use_matrix(self, A):
+        """The problem's matrix was rebuilt (a new pattern)."""
+        self.snes.setJacobian(self.model.problem.jacobian, A)
+
+    def solve(self):
+        """(converged, iterations, norms, reason); the count includes a fallback
+        solve, the norms and reason are the last solve's."""
+        w = self.model.w
+        start = w.x.array.copy() if self.fallback else None
+        ok, its, norms, reason = self._newton()
+        if ok or self.fallback is None or reason == INVERTED_ELEMENT:
+            return ok, its, norms, reason
+        w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
+        self.model.sync_displacement()
+        primary = set_line_search(self.snes, self.fallback)
+        try:
+            ok, more, norms, reason = self._newton()
+        finally:
+            set_line_search(self.snes, primary)
+        return ok, its + more, norms, reason
+
+    def _newton(self):
+        """One SNES solve. After it the unknown holds its end state (converged)
+        or the last iterate SNES evaluated (failed); a state with det F ≤ 0
+        somewhere fails with INVERTED_ELEMENT."""
+        model, x = self.model, self.model.problem.x
+        model.w.vector.copy(x)
+        self.history.reset()
+        self.snes.solve(None, x)
+        self.linear_iterations.append(self.snes.getLinearSolveIterations())
+        reason = self.snes.getConvergedReason()
+        norms = residual_norms_of(self.snes)
+        self.last_snes_reason = name = converged_reason_name(reason)
+        # every rank must take the same branch: a NaN on one rank fails the step on all
+        finite = model.comm.allreduce(int(np.all(np.isfinite(x.array))), op=MPI.MIN)
+        converged = reason > 0 and bool(finite)
+        if converged:
+            x.copy(model.w.vector)
+            dfx.update_ghosts(model.w)
+        model.sync_displacement()
+        with self.timers("inversion check"):
+            self.inverted = model.inversion_check()
+        if converged and self.inverted is not None:
+            converged, name = False, INVERTED_ELEMENT
+        return converged, self.snes.getIterationNumber(), norms, name
+
+    def iterations(self):
+        return self.snes.getIterationNumber()

@@ -1,0 +1,148 @@
+"""The run loop: a model's load path solved by its driver (load control or
+continuation), with observers — the results writer, the checkpoint, the
+console — told about every converged step and every failed attempt."""
+import time
+from pathlib import Path
+
+from petsc4py import PETSc
+
+from .. import _dolfinx as dfx
+from ..results import ResultsWriter
+from .checkpoint import Checkpoint
+from .load_stepping import LoadStepping
+from .path_following import PathFollowing
+
+
+class Observers:
+    """What happens after a converged step or a failed attempt: a results row
+    and fields, a checkpoint, a console line (with chattering warnings and a
+    time estimate)."""
+
+    def __init__(self, run, writer):
+        self.run, self.writer = run, writer
+        self.model, self.steps, self.log = run.model, run.scene["steps"], run.log
+
+    def steps_written(self):
+        return len(self.writer.steps)
+
+    def converged(self, lam, its, norms, reason, history, controller):
+        """A converged load-control step."""
+        with self.run.timers("output"):
+            changes, flips = history.active_set_changes(), history.stick_slip_changes()
+            row = self.writer.write_step(lam, its, norms, self.run.split(), history.last_active_set_change(),
+                                         history.update_norms, changes, flips, self.run.driver.augmentations)
+        for n, what in ((changes, "contact active set"), (flips, "stick/slip status")):
+            if n >= self.steps["chatter_warning"]:
+                self.log(f"   the {what} changed in {n} Newton iterations of this step "
+                         "(chattering): smaller steps or a backtracking line search damp it")
+        self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
+                 f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(lam)}")
+        self.run.save_checkpoint(self.writer, controller)
+
+    def converged_path(self, lam, its, norms, reached, target, controller, du_prev):
+        """A converged continuation step."""
+        with self.run.timers("output"):
+            row = self.writer.write_step(lam, its, norms, self.run.split())
+        st = self.steps
+        self.log(f"step {row['step']:3d}  λ = {lam:.5f}  {st['stop_probe']} u{st['stop_component']} = "
+                 f"{reached:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}{self.run.eta(reached / target)}")
+        self.run.save_checkpoint(self.writer, controller, du_prev=du_prev)
+
+    def limit_point(self, after_step, load_factor):
+        self.writer.limit_points.append({"after_step": after_step, "load_factor": load_factor})
+
+    def failed(self, story):
+        self.writer.record_failed_attempt(story, self.run.split())
+
+
+class Run:
+    """One run of a model into a results folder (``resume``: from its checkpoint)."""
+
+    def __init__(self, model, scene, timers, log, fail_attempt=None):
+        self.model, self.scene, self.timers, self.log = model, scene, timers, log
+        self.fail_attempt = fail_attempt
+        self.driver = None  # built by each run: the SNES takes the scene's PETSc options then
+
+    def _start(self):
+        scene, model = self.scene, self.model
+        self.driver = (LoadStepping(model, scene, self.timers, self.log, self.fail_attempt)
+                       if scene["steps"]["control"] == "load" else PathFollowing(model, scene, self.timers, self.log))
+        PETSc.Log.begin()
+        self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
+        self._t0 = {name: e.getPerfInfo()["time"] for name, e in self._events.items()}
+        self._started, self._progress0 = time.perf_counter(), 0.0
+
+    def split(self):
+        """The timers, with the linear solve = SNES time less residual and
+        Jacobian evaluation (factorisation, triangular solves and line-search
+        vector work); continuation times its own solves."""
+        if self.scene["steps"]["control"] == "load":
+            t = {name: e.getPerfInfo()["time"] - self._t0[name] for name, e in self._events.items()}
+            self.timers.seconds["linear solve"] = max(t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"],
+                                                      0.0)
+        return self.timers
+
+    def eta(self, progress):
+        """'  ~N s left', extrapolating the time since this run (or resume)
+        started over the fraction of the load path still to go."""
+        if not 0 < progress < 1:
+            return ""
+        done = progress - self._progress0
+        elapsed = time.perf_counter() - self._started
+        return f"  ~{elapsed * (1 - progress) / done:.0f} s left" if done > 0 else ""
+
+    def save_checkpoint(self, writer, controller, **arrays):
+        """The state after a converged step: solution, controller, contacts' histories, results so far."""
+        with self.timers("output"):
+            contacts = {}
+            for c in self.model.contacts:
+                meta, data = c.state_dict()
+                contacts[c.name] = meta
+                arrays.update({f"{c.name}.{k}": v for k, v in data.items()})
+            state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
+                     "failed_attempts": writer.failed_attempts, "contacts": contacts}
+            self.checkpoint.save(state, w=self.model.w.x.array, **arrays)
+
+    def _resume(self, state, arrays):
+        model = self.model
+        model.w.x.array[:] = arrays["w"]
+        model.sync_displacement()
+        for c in model.contacts:
+            prefix = f"{c.name}."
+            c.load_state_dict(state["contacts"][c.name],
+                              {k[len(prefix):]: v for k, v in arrays.items() if k.startswith(prefix)})
+        if state["steps"]:
+            last, st = state["steps"][-1], self.scene["steps"]
+            self._progress0 = (last["load_factor"] if st["control"] == "load" else
+                               last[f"{st['stop_probe']}_u{st['stop_component']}"] / st["stop_value"])
+
+    def __call__(self, out_dir, resume=False):
+        """Solve the load path; returns the results writer; raises StepFailure
+        after writing everything that converged."""
+        self._start()
+        self.checkpoint = Checkpoint(Path(out_dir) / "checkpoint", self.model.comm)
+        state, arrays = self.checkpoint.load() if resume else (None, {})
+        if state is not None:
+            self._resume(state, arrays)
+        model = self.model
+        writer = ResultsWriter(out_dir, model.comm, self.scene, model.effects, model.u, model.contacts, model.probes,
+                               previous=state, stress=model.stress)
+        self.log(f"hypercontact: {', '.join(model.effects)}; "
+                 f"{dfx.num_global_dofs(model.w.function_space)} unknowns on {model.comm.size} rank(s)")
+        lam0 = state["lam"] if state is not None else 0.0
+        try:
+            if self.scene["steps"]["control"] == "load":
+                self.driver.run(Observers(self, writer), out_dir, state)
+            else:
+                self.driver.run(Observers(self, writer), out_dir, state, arrays)
+        except BaseException as err:
+            model.set_load_factor(_last_load_factor(writer, lam0))
+            message = str(err) or type(err).__name__
+            writer.finish("interrupted" if isinstance(err, KeyboardInterrupt) else "failed", message, self.split())
+            raise
+        writer.finish("completed", "", self.split())
+        return writer
+
+
+def _last_load_factor(writer, default):
+    return writer.steps[-1]["load_factor"] if writer.steps else default
