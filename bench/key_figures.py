@@ -172,12 +172,13 @@ def case_friction(work, quick):
     return rows
 
 
-SPHERES = {  # row: scene, --set, the displacement column the limit point is read against
-    "sphere K=5 (steps.max=0.15, as bench/sphere.py --figure)": ("sphere", ["steps.max=0.15"], "equator_ux"),
-    "sphere K=5 (scene as is)": ("sphere", [], "equator_ux"),
-    "sphere_incompressible": ("sphere_incompressible", [], "equator_ux"),
-    "sphere_plane mu=0": ("sphere_plane", [], "pole_uz"),
-    "sphere_plane mu=0.3": ("sphere_plane", ["contact.0.mu=0.3"], "pole_uz"),
+SPHERES = {  # row: results folder, scene, --set, the displacement column the limit point is read against
+    "sphere K=5 (steps.max=0.15, as bench/sphere.py --figure)": ("sphere_max0.15", "sphere", ["steps.max=0.15"],
+                                                                  "equator_ux"),
+    "sphere K=5 (scene as is)": ("sphere", "sphere", [], "equator_ux"),
+    "sphere_incompressible": ("sphere_incompressible", "sphere_incompressible", [], "equator_ux"),
+    "sphere_plane mu=0": ("sphere_plane_mu0", "sphere_plane", [], "pole_uz"),
+    "sphere_plane mu=0.3": ("sphere_plane_mu0.3", "sphere_plane", ["contact.0.mu=0.3"], "pole_uz"),
 }
 
 
@@ -187,10 +188,10 @@ def case_sphere(work, quick):
     import numpy as np
 
     rows = {}
-    for label, (scene, sets, ucol) in SPHERES.items():
+    for label, (folder, scene, sets, ucol) in SPHERES.items():
         if quick and label != "sphere_plane mu=0":
             continue
-        run = run_scene(scene, sets, work / label.split(" (")[0].replace(" ", "_").replace("=", ""))
+        run = run_scene(scene, sets, work / folder)
         limits = run["summary"].get("limit_points", [])
         u = np.array([r[ucol] for r in run["rows"]])
         p = 1e3 * np.array([r["pressure_inner"] for r in run["rows"]])
@@ -288,8 +289,8 @@ def revision():
 
 
 def measure(names, label, quick):
-    """Run the named cases; a case that raises is recorded with its error."""
-    cases = {}
+    """Run the named cases, yielding (name, record) after each; a case that
+    raises is recorded with its error."""
     for name in names:
         doc = " ".join(CASES[name].__doc__.split())
         print(f"[{name}] {doc}", flush=True)
@@ -299,9 +300,8 @@ def measure(names, label, quick):
         except Exception as err:  # report what was reached, go on with the next case
             rows, error = {}, f"{type(err).__name__}: {err}"
             print(f"  FAILED: {error}", flush=True)
-        cases[name] = {"description": doc, "rows": rows, "error": error, **revision(),
-                       "wall_s": time.perf_counter() - t0, "load_start": load0, "load_end": loadavg()}
-    return cases
+        yield name, {"description": doc, "rows": rows, "error": error, **revision(),
+                     "wall_s": time.perf_counter() - t0, "load_start": load0, "load_end": loadavg()}
 
 
 def machine():
@@ -338,6 +338,15 @@ def cost_rows(data, pairs):
     return out
 
 
+def phase_table(data, pairs):
+    costs = {f"{case}: {row}": data["cases"].get(case, {}).get("rows", {}).get(row, {}).get("run", {}).get("cost")
+             for case, row in pairs}
+    costs = {k: c for k, c in costs.items() if c}
+    phases = sorted({p for c in costs.values() for p in c["time_split"]})
+    return table(["run", *phases], [[k, *(fmt(c["time_split"].get(p, 0.0) / c["newton_total"], 3) for p in phases)]
+                                    for k, c in costs.items()])
+
+
 def report(data):
     commits = sorted({c["commit"][:10] for c in data["cases"].values()})
     code = sorted({c["code_commit"][:10] for c in data["cases"].values()})
@@ -363,7 +372,8 @@ def report(data):
         lines += ["" if groups else "\n(nothing measured: not in this subset)\n"]
     lines += ["## Cost", "", "The three runs the issue names (N, T, s/it and shares as the docstring defines them):",
               "", *table(["run", *(h for _, h in COST_COLUMNS), "load"], cost_rows(data, COST_ROWS)), "",
-              "Every run:", ""]
+              "Their time split (summary.json `time_split`), seconds per Newton iteration (phase / N):", "",
+              *phase_table(data, COST_ROWS), "", "Every run:", ""]
     every = [(n, r) for n, c in data["cases"].items() for r, v in c["rows"].items() if "cost" in v.get("run", {})]
     lines += [*table(["run", *(h for _, h in COST_COLUMNS), "load"], cost_rows(data, every)), ""]
     return "\n".join(lines)
@@ -433,7 +443,7 @@ def main():
     path = RESULTS / f"{stem}.json"
     data = json.loads(path.read_text()) if args.only and path.exists() else {"cases": {}}
     data.update(label=args.label, quick=args.quick, machine=machine())
-    for name, case in measure(args.only or list(CASES), args.label, args.quick).items():
+    for name, case in measure(args.only or list(CASES), args.label, args.quick):
         data["cases"][name] = case
         data["generated"] = time.strftime("%Y-%m-%d %H:%M:%S %z")
         write(data, stem)  # after every case: a run stopped early keeps what it measured
