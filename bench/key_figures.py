@@ -248,9 +248,10 @@ def case_ironing(work, quick):
                "local_ratio": a.get("local_ratio"), "Fx_mean": a.get("Fx_mean"), "Fz_mean": a.get("Fz_mean"),
                "status": data["status"], "slide_reached": slide[-1] if slide else 0.0, "steps": len(steps),
                "cutbacks": sum(r.get("cutbacks", 0) for r in steps),
-               "newton_total": sum(r.get("newton", 0) for r in steps), "wall_s": data.get("wall_s")}
+               "newton_total": sum(r.get("newton", 0) for r in steps)}
     return {"rigid die": {"figures": figures, "run": {k: run[k] for k in ("command", "out", "log", "returncode")}
-                          | {"wall_process_s": run["wall_process_s"], "load": [run["load_start"], run["load_end"]]}}}
+                          | {"wall_process_s": run["wall_process_s"], "wall_driver_s": data.get("wall_s"),
+                             "load": [run["load_start"], run["load_end"]]}}}
 
 
 def case_incompressible(work, quick):
