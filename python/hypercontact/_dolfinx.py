@@ -11,6 +11,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 import dolfinx
+import dolfinx.cpp.mesh
 import dolfinx.fem.petsc as fem_petsc
 import dolfinx.io
 import dolfinx.jit
@@ -134,7 +135,7 @@ def facet_vertex_nodes(V, facets):
     tdim = mesh.topology.dim
     mesh.topology.create_connectivity(tdim - 1, 0)
     mesh.topology.create_connectivity(tdim - 1, tdim)
-    f2v, f2c = mesh.topology.connectivity(tdim - 1, 0), mesh.topology.connectivity(tdim - 1, tdim)
+    f2v = mesh.topology.connectivity(tdim - 1, 0)
     v2n = vertex_to_node(V)
     per_facet = len(f2v.links(0)) if f2v.num_nodes > 0 else 0
     nodes = np.array([v2n[f2v.links(f)] for f in facets], dtype=np.int32).reshape(len(facets), per_facet)
@@ -330,6 +331,54 @@ def gmsh_arrays(model):
     quads = topologies.get(3, {"topology": np.zeros((0, 4)), "cell_data": np.zeros(0)})
     return (x, np.asarray(hexes["topology"], dtype=np.int64), np.asarray(hexes["cell_data"], dtype=np.int32),
             np.asarray(quads["topology"], dtype=np.int64), np.asarray(quads["cell_data"], dtype=np.int32))
+
+
+def geometry_to_dofs(mesh, V):
+    """Process-local dof (block) index of a first-order Lagrange space V at
+    each process-local geometry node of a first-order mesh."""
+    g = mesh.geometry.dofmap.array.reshape(-1, len(mesh.geometry.dofmap.links(0)))
+    d = V.dofmap.list.array.reshape(-1, V.dofmap.dof_layout.num_dofs)
+    if g.shape != d.shape:
+        raise ValueError("deformed_shape: needs a first-order mesh geometry")
+    out = np.full(mesh.geometry.x.shape[0], -1, dtype=np.int64)
+    out[g.ravel()] = d.ravel()
+    return out
+
+
+def first_order(f, mesh, name):
+    """f itself if it is first-order Lagrange, else its interpolant into the
+    first-order Lagrange space of the same shape."""
+    element = f.function_space.ufl_element()
+    if element.degree() == 1 and element.family() in ("Q", "Lagrange", "P"):
+        return f
+    shape = f.ufl_shape
+    if shape == ():
+        space = fem.FunctionSpace(mesh, ("Lagrange", 1))
+    elif len(shape) == 1:
+        space = fem.VectorFunctionSpace(mesh, ("Lagrange", 1), dim=shape[0])
+    else:
+        raise ValueError(f"deformed_shape: {name} must be a scalar or vector field, has shape {shape}")
+    g = fem.Function(space)
+    g.interpolate(f)
+    return g
+
+
+def owned_exterior_facets(mesh):
+    """(geometry nodes of this rank's owned exterior facets (f, k), the cell of each)."""
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    mesh.topology.create_connectivity(tdim - 1, 0)
+    facets = dolfinx.mesh.exterior_facet_indices(mesh.topology)
+    facets = facets[facets < mesh.topology.index_map(tdim - 1).size_local].astype(np.int32)
+    nodes = dolfinx.cpp.mesh.entities_to_geometry(getattr(mesh, "_mesh", mesh), tdim - 1, facets, False)
+    f2c = mesh.topology.connectivity(tdim - 1, tdim)
+    cells = f2c.array[f2c.offsets[facets]] if len(facets) else facets  # an exterior facet has one cell
+    return nodes, cells
+
+
+def cell_dofs(S, cells):
+    """The dof of each process-local cell in a one-dof-per-cell (DG0) space S."""
+    return S.dofmap.list.array.reshape(-1, 1)[cells, 0] if len(cells) else cells
 
 
 def num_owned_cells(mesh):

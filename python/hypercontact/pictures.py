@@ -22,8 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
-import dolfinx  # noqa: E402
-import dolfinx.cpp.mesh  # noqa: E402
+from . import _dolfinx as dfx  # noqa: E402
 
 #: Vertices of dolfinx's reference quadrilateral (0,0), (1,0), (0,1), (1,1)
 #: in the order that walks around its boundary.
@@ -87,52 +86,17 @@ def load_curves(csv_path, png_path, x, ys, labels=None, title=None):
     return png_path
 
 
-def _geometry_to_dofs(mesh, V):
-    """Process-local dof (block) index of a first-order Lagrange space V at
-    each process-local geometry node of a first-order mesh."""
-    g = mesh.geometry.dofmap.array.reshape(-1, len(mesh.geometry.dofmap.links(0)))
-    d = V.dofmap.list.array.reshape(-1, V.dofmap.dof_layout.num_dofs)
-    if g.shape != d.shape:
-        raise ValueError("deformed_shape: needs a first-order mesh geometry")
-    out = np.full(mesh.geometry.x.shape[0], -1, dtype=np.int64)
-    out[g.ravel()] = d.ravel()
-    return out
-
-
-def _first_order(f, mesh, name):
-    """f itself if it is first-order Lagrange, else its interpolant into the
-    first-order Lagrange space of the same shape."""
-    element = f.function_space.ufl_element()
-    if element.degree() == 1 and element.family() in ("Q", "Lagrange", "P"):
-        return f
-    shape = f.ufl_shape
-    if shape == ():
-        space = dolfinx.fem.FunctionSpace(mesh, ("Lagrange", 1))
-    elif len(shape) == 1:
-        space = dolfinx.fem.VectorFunctionSpace(mesh, ("Lagrange", 1), dim=shape[0])
-    else:
-        raise ValueError(f"deformed_shape: {name} must be a scalar or vector field, has shape {shape}")
-    g = dolfinx.fem.Function(space)
-    g.interpolate(f)
-    return g
-
-
 def _local_surface(mesh, u, values, scale):
     """This rank's owned exterior facets: (polygons (n, 4, 3) in the deformed
     configuration, one colour value per facet, label)."""
-    tdim = mesh.topology.dim
-    mesh.topology.create_connectivity(tdim - 1, tdim)
-    mesh.topology.create_connectivity(tdim - 1, 0)
-    facets = dolfinx.mesh.exterior_facet_indices(mesh.topology)
-    facets = facets[facets < mesh.topology.index_map(tdim - 1).size_local].astype(np.int32)
-    nodes = dolfinx.cpp.mesh.entities_to_geometry(getattr(mesh, "_mesh", mesh), tdim - 1, facets, False)
+    nodes, cells = dfx.owned_exterior_facets(mesh)
     if nodes.shape[1] != 4:
         raise ValueError(f"deformed_shape: needs quadrilateral boundary facets (hexahedra), "
                          f"found {nodes.shape[1]} nodes per facet")
     nodes = nodes[:, QUAD_CYCLE]
 
-    u1 = _first_order(u, mesh, "u")
-    g2d = _geometry_to_dofs(mesh, u1.function_space)
+    u1 = dfx.first_order(u, mesh, "u")
+    g2d = dfx.geometry_to_dofs(mesh, u1.function_space)
     U = u1.x.array.reshape(-1, 3)[g2d]
     X = mesh.geometry.x[:, :3] + scale * U
     polygons = X[nodes]
@@ -155,14 +119,11 @@ def _local_surface(mesh, u, values, scale):
         if element.degree() == 0:  # one value per cell: the cell of each exterior facet
             if values.ufl_shape != ():
                 raise ValueError(f"deformed_shape: the cell field {values.name!r} must be scalar")
-            f2c = mesh.topology.connectivity(tdim - 1, tdim)
-            cells = f2c.array[f2c.offsets[facets]]  # an exterior facet has one cell
-            dofs = values.function_space.dofmap.list.array.reshape(-1, 1)[cells, 0] if len(cells) else cells
-            colour = values.x.array[dofs]
+            colour = values.x.array[dfx.cell_dofs(values.function_space, cells)]
         else:
-            v1 = _first_order(values, mesh, values.name)
+            v1 = dfx.first_order(values, mesh, values.name)
             w = v1.x.array.reshape(-1, int(np.prod(values.ufl_shape, dtype=int)))
-            w = w[_geometry_to_dofs(mesh, v1.function_space)]
+            w = w[dfx.geometry_to_dofs(mesh, v1.function_space)]
             nodal = w[:, 0] if w.shape[1] == 1 else np.linalg.norm(w, axis=1)
             if w.shape[1] > 1:
                 label = f"|{label}|"
