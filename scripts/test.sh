@@ -15,6 +15,7 @@ mpirun -n 2 --allow-run-as-root --oversubscribe \
 # any x86-64 processor with AVX, whatever this machine's own kernel is.
 if grep -qw avx /proc/cpuinfo 2>/dev/null; then
   OPENBLAS_CORETYPE=Sandybridge .venv/bin/python -m pytest -q -p no:cacheprovider \
-    tests/test_robustness.py tests/test_punch_friction.py tests/test_friction.py \
-    tests/test_friction_block.py tests/test_surface_friction.py tests/test_step_control.py tests/hard
+    tests/behaviour/test_robustness.py tests/verification/test_punch_friction.py tests/verification/test_friction.py \
+    tests/verification/test_friction_block.py tests/verification/test_surface_friction.py \
+    tests/behaviour/test_step_control.py tests/behaviour/test_contact_protocol.py tests/hard
 fi

@@ -26,7 +26,7 @@ from hypercontact.solve.newton_solver import NewtonSolver
 from hypercontact.contact.factory import _surface_law
 from hypercontact.contact.pair import Contact
 
-SCENES = __import__("pathlib").Path(__file__).resolve().parent.parent / "scenes"
+SCENES = __import__("pathlib").Path(__file__).resolve().parents[2] / "scenes"
 MU, PRESS = 0.3, 0.01
 STICK, SLIP = 1, 2
 

@@ -23,7 +23,7 @@ from hypercontact import scene
 from hypercontact.simulation import Simulation
 from reference.patch_spread import sigma_zz_spread
 
-SCENES = __import__("pathlib").Path(__file__).resolve().parent.parent / "scenes"
+SCENES = __import__("pathlib").Path(__file__).resolve().parents[2] / "scenes"
 
 
 def run_blocks(tmp_path, overrides=(), comm=MPI.COMM_WORLD):

@@ -22,7 +22,7 @@ from mpi4py import MPI
 import importlib.util
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 _spec = importlib.util.spec_from_file_location("bench_hertz", ROOT / "bench" / "hertz.py")
 H = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(H)
