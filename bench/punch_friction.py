@@ -1,4 +1,5 @@
-"""The paper's four friction cases of the rigid punch (SPEC §5.2, Figs. 3–6).
+"""The paper's four friction cases of the rigid punch (docs/method.md §9.2,
+the paper's Figs. 3–6).
 
     .venv/bin/python bench/punch_friction.py [--meshes 16x4 32x8] [--eps-t-study]
 

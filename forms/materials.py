@@ -5,10 +5,10 @@ Stress and tangent are never written by hand: the volume forms take
 derivatives of ψ with UFL, so ψ is the single source of a material.
 
 A user's own law is just another function with the same signature,
-``psi(F, **params) -> UFL expression``, passed to the driver (see README).
+``psi(F, **params) -> UFL expression``, passed to the driver (see README.md).
 
-Isochoric split (SPEC §3): F̂ = J^(-1/3) F, B̂ = F̂ F̂ᵀ, with the invariants
-of B̂ computed from C = FᵀF (same values, and cheaper forms).
+Isochoric split (docs/method.md §1.2): F̂ = J^(-1/3) F, B̂ = F̂ F̂ᵀ, with the
+invariants of B̂ computed from C = FᵀF (same values, and cheaper forms).
 
 Volumetric part Ψ0(J), chosen by the parameter ``volumetric`` (VOLUMETRIC):
 the paper's "quadratic" K/2 (J − 1)² (the default), or "log" K/2 (ln J)² or
@@ -24,7 +24,8 @@ def _isochoric_invariants(F):
 
     Ī1 = J^(-2/3) tr C,
     Ī2 (usual) = ½ (Ī1² − tr(Ĉ²)),
-    Ī2 (paper) = tr(Ĉ²) = J^(-4/3) tr(C²)   (the paper's definition, SPEC §3).
+    Ī2 (paper) = tr(Ĉ²) = J^(-4/3) tr(C²)   (the paper's definition,
+                                            docs/method.md §1.2).
     """
     C = F.T * F
     J = ufl.det(F)
@@ -77,7 +78,8 @@ def mooney_rivlin_isochoric(F, alpha1, alpha2, i2="usual"):
 
 
 def mooney_rivlin(F, alpha1, alpha2, K, i2="usual", volumetric="quadratic"):
-    """Mooney–Rivlin (SPEC (22)): α1 (Ī1 − 3) + α2 (Ī2 − 3) + Ψ0(J)."""
+    """Mooney–Rivlin (the paper's (22), docs/method.md §1.2):
+    α1 (Ī1 − 3) + α2 (Ī2 − 3) + Ψ0(J)."""
     return mooney_rivlin_isochoric(F, alpha1, alpha2, i2) + volumetric_penalty(ufl.det(F), K, volumetric)
 
 

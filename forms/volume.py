@@ -6,8 +6,8 @@ the tangent is exact by construction.
 
 The quadrature degree is always explicit: UFL's estimate for ψ with
 J^(-2/3) is so high that a small hexahedral mesh would take minutes per
-Newton step (see DESIGN.md). Degree 2 on trilinear hexahedra is the 2×2×2
-Gauss rule.
+Newton step (docs/design.md §6.3). Degree 2 on trilinear hexahedra is the
+2×2×2 Gauss rule.
 """
 import math
 
@@ -40,9 +40,9 @@ def selective_reduced_forms(u, psi_iso, params, K, quadrature_degree, dx=None, v
     trilinear hexahedra as K grows. ``psi_iso(F, **params)`` is the
     isochoric part of the law.
 
-    Caution (measured on the inflated sphere, README): past the limit point
-    this formulation admits a spurious aspherical bifurcation that the plain
-    formulation does not show.
+    Caution (measured on the inflated sphere, docs/verification.md §5): past
+    the limit point this formulation admits a spurious aspherical bifurcation
+    that the plain formulation does not show.
     """
     dx_full = (dx or ufl.dx)(metadata={"quadrature_degree": int(quadrature_degree)})
     dx_one = (dx or ufl.dx)(metadata={"quadrature_degree": 1})

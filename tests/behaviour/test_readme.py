@@ -1,5 +1,6 @@
-"""The README's examples work as written: its scene snippets load, its
-command lines name valid scenes and keys, its driver script runs."""
+"""The README's and the docs pages' examples work as written: their scene
+snippets load, their command lines name valid scenes and keys, the README's
+material law and driver script run."""
 import re
 import shlex
 import sys
@@ -13,15 +14,17 @@ from hypercontact import cli, scene
 from hypercontact.simulation import Simulation
 
 README = (ROOT / "README.md").read_text()
+#: The README and every page of docs/, by path: the examples moved out of the README live there.
+PAGES = {"README.md": README, **{p.relative_to(ROOT).as_posix(): p.read_text() for p in sorted(ROOT.glob("docs/*.md"))}}
 
 
-def blocks(language):
-    return re.findall(rf"```{language}\n(.*?)```", README, flags=re.S)
+def blocks(language, text=README):
+    return re.findall(rf"```{language}\n(.*?)```", text, flags=re.S)
 
 
-def hypercontact_commands():
-    """Every `hypercontact run|check ...` command in the README's sh blocks."""
-    for block in blocks("sh"):
+def hypercontact_commands(text=README):
+    """Every `hypercontact run|check|study ...` command in the sh blocks of a page."""
+    for block in blocks("sh", text):
         for line in block.splitlines():
             line = line.split("#", 1)[0]
             for part in line.split("&&"):
@@ -29,13 +32,18 @@ def hypercontact_commands():
                     yield shlex.split(part.split("bin/hypercontact ", 1)[1])
 
 
+COMMANDS = [(page, argv) for page, text in PAGES.items() for argv in hypercontact_commands(text)]
+
+
 def test_readme_has_examples():
     assert len(list(hypercontact_commands())) >= 6
     assert blocks("toml") and blocks("python")
+    # the command lines that moved out of the README are tested where they are now
+    assert {"docs/verification.md", "docs/studies.md"} <= {page for page, _ in COMMANDS}
 
 
-@pytest.mark.parametrize("argv", list(hypercontact_commands()), ids=" ".join)
-def test_command_lines_are_valid(argv, capsys, monkeypatch):
+@pytest.mark.parametrize("page, argv", COMMANDS, ids=[f"{page}: {' '.join(argv)}" for page, argv in COMMANDS])
+def test_command_lines_are_valid(page, argv, capsys, monkeypatch):
     """Each command, as `check` (same scene, same --set overrides)."""
     args, skip = [], False
     for a in argv[1:]:
@@ -57,12 +65,14 @@ def test_command_lines_are_valid(argv, capsys, monkeypatch):
 
 
 def test_scene_reference_block_is_a_valid_scene(tmp_path):
-    full = [b for b in blocks("toml") if "[mesh]" in b]
-    assert full, "the README documents a complete scene"
-    for i, text in enumerate(full):
-        path = tmp_path / f"scene{i}.toml"
-        path.write_text(text)
-        scene.load(path)
+    full = {page: [b for b in blocks("toml", text) if "[mesh]" in b] for page, text in PAGES.items()}
+    assert full["README.md"], "the README shows a complete scene"
+    assert full["docs/scenes.md"], "docs/scenes.md documents every key in a complete scene"
+    for page, texts in full.items():
+        for i, text in enumerate(texts):
+            path = tmp_path / f"{page.replace('/', '_')}_{i}.toml"
+            path.write_text(text)
+            scene.load(path)
 
 
 def test_material_law_example_and_driver_script_run(tmp_path, monkeypatch):

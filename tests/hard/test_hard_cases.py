@@ -34,7 +34,8 @@ def test_steps_ten_times_larger_are_cut_back_to_the_same_result(tmp_path):
     _, large = run(punch(initial=1.0, max=1.0), tmp_path / "large")
     f_small, f_large = small.steps[-1]["punch_fz"], large.steps[-1]["punch_fz"]
     assert large.steps[-1]["load_factor"] == pytest.approx(1.0)
-    # load-path dependence at the punch edge is real (README: +0.9 % at 32x32x8 for smaller steps)
+    # load-path dependence at the punch edge is real (docs/verification.md §1:
+    # +0.9 % at 32x32x8 for smaller steps)
     assert abs(f_large - f_small) < 0.02 * abs(f_small)
 
 

@@ -1,5 +1,6 @@
-"""The frictionless rigid punch (SPEC 5.2) on a coarse mesh: equilibrium,
-Newton's quadratic convergence, and independence of the number of ranks."""
+"""The frictionless rigid punch (docs/method.md §9.2) on a coarse mesh:
+equilibrium, Newton's quadratic convergence, and independence of the number
+of ranks."""
 import csv
 
 import numpy as np

@@ -1,5 +1,6 @@
-"""The inflated sphere (SPEC 5.1): the finite-element limit point against the
-spherically symmetric 1D oracle, continuation past it, ranks independence."""
+"""The inflated sphere (docs/method.md §9.1): the finite-element limit point
+against the spherically symmetric 1D oracle, continuation past it, ranks
+independence."""
 import numpy as np
 import pytest
 from conftest import ROOT, quiet
@@ -35,7 +36,7 @@ def vertex(u, p):
 @pytest.mark.parametrize("K, formulation, reach", [
     (1.0, "displacement", 1.3), (5.0, "displacement", 1.3), (200.0, "displacement", 2.05),
     # selective reduced integration leaves the spherical branch soon after
-    # the maximum (README), so its curve is checked only just past it
+    # the maximum (docs/verification.md §5), so its curve is checked only just past it
     (1.0, "sri", 1.15), (5.0, "sri", 1.15), (200.0, "sri", 1.15)])
 def test_limit_point_matches_1d_oracle(K, formulation, reach, out_dir):
     """16 × 16 × 4 octant, arc length: the limit pressure and the displacement
