@@ -228,7 +228,7 @@ def report():
           "meridian node; outside the contact the gap grows like (r − a)^{3/2}, so it lands near the closed "
           "node whenever the open node is far (medium: bracket [1.377, 2.167], a_gap −23 % but within one "
           "node spacing). a_fit uses every closed node and is within 1.4–5.3 % at all levels.",
-          "- **Tolerance of tests/test_hertz.py** (coarse mesh, block 8/8, ball 6/6): |a − a_H| ≤ h_s (the "
+          "- **Tolerance of tests/verification/test_hertz.py** (coarse mesh, block 8/8, ball 6/6): |a − a_H| ≤ h_s (the "
           "slave node spacing at the contact edge, 1.375 mm there) for a_gap and a_fit; |p0_fit/p0_H − 1| ≤ 20 % "
           "(the measured error at that mesh is −15.6 %, falling to −14.2 % and −10.5 % on the finer meshes).",
           "- **Fine level.** 22/22 + 16/16 (≈ 50 k unknowns) was started but needed > 14 min for its first load "

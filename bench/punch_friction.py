@@ -234,7 +234,7 @@ def markdown(rows, out):
               "friction (the frictionless case: all its steps, for comparison). From the residual norms r_k of "
               "summary.json: over the iterations with r_k-1 < 1 % of r_0 and r_k+1 above the round-off level (10 × "
               "the smallest final residual of the run, about 2e-11 N); from the Newton corrections |Δu_k| "
-              "(summary.json's update_norms; as tests/test_punch.py measures it): with |Δu_k-1| < 10 % of the "
+              "(summary.json's update_norms; as tests/verification/test_punch.py measures it): with |Δu_k-1| < 10 % of the "
               "first. Medians over all such iterations, and over the last one of each step (the asymptotic rate):",
               "", "| (μ1, μ2) | quarter mesh | frictional steps | residuals: median (iterations) | residuals: last of "
               "each step | corrections: median | corrections: last of each step |", "|---|---|---|---|---|---|---|"]

@@ -10,7 +10,7 @@ is chosen when OpenBLAS loads) and one thread. Writes robustness.json and
 robustness.md: per scene and kernel the status, load steps, cut-backs, Newton
 iterations per step (mean, max), the final force and the wall time, and per
 scene the largest relative spread of the force over the kernels that finished.
-A benchmark reports; tests/test_robustness.py asserts.
+A benchmark reports; tests/behaviour/test_robustness.py asserts.
 """
 import argparse
 import csv

@@ -80,7 +80,7 @@ def test_with_friction_the_gap_tolerance_is_reached_and_the_cone_holds(tmp_path)
 @pytest.mark.parametrize("key, value", [("enforcement", "lagrange"), ("gap_tolerance", -1e-3),
                                         ("max_augmentations", 0)])
 def test_bad_augmented_lagrangian_values_are_refused(key, value):
-    """Deformable masters accept the augmented Lagrangian (tests/test_augmented_lagrangian_surface.py);
+    """Deformable masters accept the augmented Lagrangian (tests/verification/test_augmented_lagrangian_surface.py);
     bad values of its keys are refused with the key's name, rigid or not."""
     for name in ("blocks.toml", "punch.toml"):
         data = tomllib.loads((ROOT / "scenes" / name).read_text())

@@ -66,7 +66,7 @@ def gather(a):
 @pytest.fixture(scope="module", autouse=True)
 def no_pictures():
     """These tests read numbers; drawing curves.png and deformed.png at the
-    end of every run would be most of their time (tests/test_results_output.py
+    end of every run would be most of their time (tests/behaviour/test_results_output.py
     tests the pictures)."""
     with pytest.MonkeyPatch.context() as m:
         m.setattr(ResultsWriter, "draw_pictures", lambda self: {"skipped": "not drawn in this test"})

@@ -89,7 +89,7 @@ def test_hertz_reference_error_recomputed_from_the_case_profile(tmp_path):
 
 def test_patch_reference_is_the_spread_of_the_fields(tmp_path):
     """Blocks (scenes/blocks.toml), single pass and two-pass: the study's
-    value equals the σ_zz spread of tests/test_surface_contact.py and the
+    value equals the σ_zz spread of tests/verification/test_surface_contact.py and the
     pressure spread computed here, on independent runs of the same scene."""
     cases = [[], ["contact.0.passes=2"]]
     _, rows = _study(tmp_path, 'scene = "blocks"\nreference = "patch:sigma_zz"\n'
