@@ -1,10 +1,10 @@
 // Internal: the narrow phase of deformable–deformable contact shared by the frictionless and the
-// frictional assembly (assemble_surface.cpp, assemble_surface_friction.cpp): input checks, the
-// master surface's rim nodes, and the pairing of one slave point (closest candidate facet, the
-// rim continued by kOverhang, OffSurface classification, the touch tolerance).
+// frictional evaluation: input checks, the master surface's rim nodes, and the pairing of one
+// slave point (closest candidate facet, the rim continued by kOverhang, OffSurface
+// classification, the touch tolerance).
 #pragma once
 
-#include <hypercontact/assemble_surface.hpp>
+#include <hypercontact/surface_contact.hpp>
 #include <hypercontact/facet_projection.hpp>
 #include <hypercontact/node_to_surface.hpp>
 #include <vector>

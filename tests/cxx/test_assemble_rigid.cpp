@@ -111,11 +111,3 @@ TEST(AssembleRigid, RejectsBadDofs) {
 
 }  // namespace
 }  // namespace hypercontact
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  if (PetscInitialize(nullptr, nullptr, nullptr, nullptr) != 0) return 1;
-  const int result = RUN_ALL_TESTS();
-  PetscFinalize();
-  return result;
-}
