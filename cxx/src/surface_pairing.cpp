@@ -102,6 +102,16 @@ bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char
   return true;
 }
 
+void element_dofs(const SurfaceContactInput& in, std::span<const std::int32_t> nodes,
+                  std::int32_t facet, std::span<std::int32_t> out) {
+  std::size_t j = 0;
+  const auto add = [&](std::int32_t node) {
+    for (int k = 0; k < 3; ++k) out[j++] = in.dofs[3 * node + k];
+  };
+  for (const std::int32_t node : nodes) add(node);
+  for (int i = 0; i < 4; ++i) add(in.facets[4 * facet + i]);
+}
+
 void init_state(SurfaceContactState& s, std::size_t np) {
   s.facet.assign(np, -1);
   s.feature.assign(np, -1);

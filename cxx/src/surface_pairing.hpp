@@ -41,6 +41,10 @@ bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char
                            std::size_t p, SurfaceContactState& s, SlavePointPairing& pr,
                            NodeCoordinates& master, SurfaceContact& e);
 
+/// The dofs (3 per node) of `nodes`, then of the nodes of master facet `facet`, into out.
+void element_dofs(const SurfaceContactInput& in, std::span<const std::int32_t> nodes,
+                  std::int32_t facet, std::span<std::int32_t> out);
+
 /// s with every per-point array sized for np points and the totals zero.
 void init_state(SurfaceContactState& s, std::size_t np);
 

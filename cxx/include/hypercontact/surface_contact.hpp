@@ -1,9 +1,11 @@
-// Deformable–deformable contact, PETSc-free part: the input of a slave surface against a master
-// surface and the per-point state of its evaluation (the narrow phase's pairing, gap, pressure).
+// Deformable–deformable normal contact (PETSc-free): a slave surface against a master surface,
+// each slave point paired by the narrow phase with its closest master facet and, if closed,
+// evaluated with the node-to-surface (or Gauss-point-to-surface) penalty element.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <hypercontact/contact_elements.hpp>
 #include <span>
 #include <vector>
 
@@ -60,5 +62,24 @@ struct SurfaceContactInput {
   /// bracket; δ > 0 makes points with g < λ_N/ε_N + δ active.
   double smoothing = 0.0;
 };
+
+/// The state and, for every closed point, its element: rows = columns = the dofs of
+/// [the point's slave nodes, the facet's nodes] (3 each), R and K of node_to_surface, global
+/// numbering (rows of master nodes may belong to another rank).
+struct SurfaceContactEvaluation : SurfaceContactState {
+  ContactElements elements;
+};
+
+/// Evaluates every slave point once: closest point over its candidate facets (ties: face before
+/// edge before vertex, then the lower facet index); the gap g = (x_s − x_M)·n with n the facet
+/// normal at the closest point of the winning facet; a point whose closest point is on the master
+/// surface's boundary is OffSurface (open) unless it lies within the facet's extent
+/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_s − x_M) or overhangs the rim by at most 0.05 in ξ (2.5 % of
+/// the facet; then projected onto the facet continued beyond its edge, as a face point). A closed point
+/// (g ≤ touch, touch = 1e-10 × the facet's diagonal; with λ_N > 0 or δ > 0: p_N > 0, see
+/// node_to_surface) keeps the element residual and tangent of node_to_surface (energy ½ w ε_N g²
+/// with all curvature terms). Throws std::invalid_argument on inconsistent sizes or indices out
+/// of range, and as node_to_surface.
+SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in);
 
 }  // namespace hypercontact

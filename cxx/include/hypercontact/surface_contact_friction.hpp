@@ -1,5 +1,6 @@
-// Coulomb friction against a deformable master surface, PETSc-free part: the input (the normal
-// contact's plus each slave point's history) and the per-point state of its evaluation.
+// Coulomb friction against a deformable master surface (PETSc-free): per slave point the pairing
+// and normal element of surface_contact.hpp plus the return map of surface_friction with the
+// point's history, in one evaluation.
 #pragma once
 
 #include <hypercontact/surface_contact.hpp>
@@ -27,5 +28,22 @@ struct SurfaceFrictionInput {
   double eps_t;
   double mu;
 };
+
+/// The state and, for every closed point, its element: rows = the dofs of [slave nodes, current
+/// facet], columns = those and the old facet's (duplicates of shared nodes add up),
+/// R = normal + friction residual, K = normal tangent (its columns) + friction tangent; global
+/// numbering.
+struct SurfaceFrictionEvaluation : SurfaceFrictionState {
+  ContactElements elements;
+};
+
+/// Evaluates every slave point as evaluate_surface_contact; a closed point (Paired, g ≤ touch)
+/// keeps the normal element (node_to_surface) plus the friction of surface_friction against its
+/// current facet at ξ* with the history (old facet's CURRENT nodes at ξ_old, t_old). A point
+/// without history (old_facet = −1) uses old facet = current facet, ξ_old = ξ*, t_old = 0: its
+/// trial traction ε_T P_T (x_s − x_M(ξ*)) vanishes, so it keeps its (zero) friction residual but
+/// no friction tangent (the consistent derivative of a residual that is zero for every x).
+/// Throws as evaluate_surface_contact, and std::invalid_argument if the history is inconsistent.
+SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& in);
 
 }  // namespace hypercontact
