@@ -1,9 +1,10 @@
 // assemble_contact: the hypercontact C++ library without Python.
 //
 // Four slave nodes against a rigid plane z = 0 (normal +z): two above it (open), two below it
-// (closed, g < 0). Their normal penalty contact is assembled into a PETSc Vec (the residual)
-// and an AIJ Mat (the tangent), the way a C++ finite element code would: process-local dof
-// numbers 3 i + k with a local-to-global mapping, −1 for a constrained dof (skipped).
+// (closed, g < 0). One evaluation (evaluate_rigid_contact: the projection and penalty of every
+// node, once) gives the state and each closed node's element; add_residual and add_tangent put
+// them into a PETSc Vec and an AIJ Mat the way a C++ finite element code would: process-local
+// dof numbers 3 i + k through a local-to-global mapping, −1 for a constrained dof (skipped).
 // Closed form of a closed node i on the plane (n = e_z, ∂n/∂x = 0):
 //   r_i = A_i ε_N g_i n,   K_i = A_i ε_N n ⊗ n,
 // so b[3 i + 2] = A_i ε_N z_i, A[3 i + 2, 3 i + 2] = A_i ε_N; an open node adds nothing.
@@ -14,8 +15,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <hypercontact/assemble_rigid.hpp>
-#include <span>
+#include <hypercontact/assembly.hpp>
+#include <hypercontact/rigid_contact.hpp>
 #include <vector>
 
 namespace hc = hypercontact;
@@ -24,19 +25,15 @@ namespace {
 
 constexpr PetscInt num_dofs = 12;  // 4 nodes × 3
 
-/// A sequential AIJ matrix with the identity local-to-global mapping (the assembly inserts with
-/// MatSetValuesLocal).
-Mat create_tangent_matrix() {
-  Mat A;
-  MatCreateSeqAIJ(PETSC_COMM_SELF, num_dofs, num_dofs, 3, nullptr, &A);
+/// The identity local-to-global mapping (on one process local and global numbers agree; the
+/// assembly inserts local numbers with VecSetValuesLocal / MatSetValuesLocal).
+ISLocalToGlobalMapping identity_mapping() {
   std::array<PetscInt, num_dofs> identity;
   for (PetscInt i = 0; i < num_dofs; ++i) identity[i] = i;
   ISLocalToGlobalMapping map;
   ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, num_dofs, identity.data(), PETSC_COPY_VALUES,
                                &map);
-  MatSetLocalToGlobalMapping(A, map, map);
-  ISLocalToGlobalMappingDestroy(&map);
-  return A;
+  return map;
 }
 
 /// |actual − expected| ≤ 1e-12 |expected|, printed.
@@ -61,17 +58,23 @@ int main(int argc, char** argv) {
     for (PetscInt i = 0; i < num_dofs; ++i) dofs[i] = static_cast<std::int32_t>(i);
     dofs[9] = -1;
 
+    const hc::RigidContactEvaluation contact =
+        hc::evaluate_rigid_contact({.obstacle = plane, .x = x, .area = area, .dofs = dofs,
+                                    .eps_n = eps_n});
+
+    ISLocalToGlobalMapping map = identity_mapping();
     Vec b;
     VecCreateSeq(PETSC_COMM_SELF, num_dofs, &b);
+    VecSetLocalToGlobalMapping(b, map);
     VecSet(b, 0.0);
-    PetscScalar* b_array;
-    VecGetArray(b, &b_array);
-    const hc::RigidContactState state = hc::assemble_rigid_residual(
-        plane, x, area, eps_n, dofs, std::span<double>(b_array, num_dofs));
-    VecRestoreArray(b, &b_array);
-
-    Mat A = create_tangent_matrix();
-    hc::assemble_rigid_tangent(plane, x, area, eps_n, dofs, A);
+    hc::add_residual(contact, b);
+    VecAssemblyBegin(b);
+    VecAssemblyEnd(b);
+    Mat A;
+    MatCreateSeqAIJ(PETSC_COMM_SELF, num_dofs, num_dofs, 3, nullptr, &A);
+    MatSetLocalToGlobalMapping(A, map, map);
+    ISLocalToGlobalMappingDestroy(&map);
+    hc::add_tangent(contact, A);
     MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
     MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 
@@ -81,7 +84,7 @@ int main(int argc, char** argv) {
     VecGetValues(b, 1, &z3, &r3);
     VecGetValues(b, 1, &z0, &r0);
     MatGetValues(A, 1, &z1, 1, &z1, &k1);
-    ok = check("closed nodes", state.num_closed, 2) && ok;
+    ok = check("closed nodes", contact.num_closed, 2) && ok;
     ok = check("residual of node 1, z", r1, area[1] * eps_n * x[5]) && ok;
     ok = check("residual of node 3, z", r3, area[3] * eps_n * x[11]) && ok;
     ok = check("tangent of node 1, zz", k1, area[1] * eps_n) && ok;
