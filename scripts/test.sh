@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets everything up (scripts/setup.sh) and runs all tests: C++ (ctest),
+# Sets everything up (scripts/setup.sh) and runs all tests: C++ (ctest, then the example
+# examples/assemble_contact built against the installed C++ package),
 # Python serial, the MPI-marked Python tests under mpirun -n 2, and the
 # convergence-robustness subset again under a second OpenBLAS kernel.
 set -euo pipefail
@@ -7,6 +8,12 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 ctest --test-dir build --output-on-failure
+# The C++ package as a C++ user gets it: installed, and a program built against the installed copy.
+rm -rf build/install build/example
+cmake --install build --prefix build/install > /dev/null
+cmake -S examples/assemble_contact -B build/example -DCMAKE_PREFIX_PATH="$PWD/build/install" > /dev/null
+cmake --build build/example
+build/example/assemble_contact
 .venv/bin/python -m pytest -q -p no:cacheprovider tests
 mpirun -n 2 --allow-run-as-root --oversubscribe \
   .venv/bin/python -m pytest -q -p no:cacheprovider -m mpi tests

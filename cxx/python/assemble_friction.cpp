@@ -1,4 +1,5 @@
-// Bindings of assemble_friction.hpp; A is a petsc4py Mat (dolfinx's pybind11 PETSc casters).
+// Bindings of assemble_friction.hpp (the positional interface before RigidFrictionInput and
+// evaluate_rigid_friction); A is a petsc4py Mat (dolfinx's pybind11 PETSc casters).
 #include <caster_petsc.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>

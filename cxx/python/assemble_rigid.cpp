@@ -1,4 +1,5 @@
-// Bindings of assemble_rigid.hpp; A is a petsc4py Mat (dolfinx's pybind11 PETSc casters).
+// Bindings of assemble_rigid.hpp (the positional interface before RigidContactInput and
+// evaluate_rigid_contact); A is a petsc4py Mat (dolfinx's pybind11 PETSc casters).
 #include <caster_petsc.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -19,14 +20,6 @@ void check_nodes(const RealArray& x, const RealArray& area, const IndexArray& do
 }  // namespace
 
 void declare_assemble_rigid(py::module_& m) {
-  py::class_<RigidContactState>(m, "RigidContactState", "Output of assemble_rigid_residual")
-      .def_property_readonly("gap", [](const RigidContactState& s) { return to_numpy(s.gap); })
-      .def_property_readonly("pressure",
-                             [](const RigidContactState& s) { return to_numpy(s.pressure); })
-      .def_readonly("force", &RigidContactState::force,
-                    "force of the obstacle on the body, -sum of the nodal residuals (3,)")
-      .def_readonly("num_closed", &RigidContactState::num_closed);
-
   m.def(
       "assemble_rigid_residual",
       [](const Obstacle& obstacle, const RealArray& x, const RealArray& area, double eps_n,

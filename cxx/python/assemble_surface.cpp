@@ -1,46 +1,24 @@
-// Bindings of assemble_surface.hpp; b and A are petsc4py objects or None.
+// Bindings of assemble_surface.hpp (the positional interface before SurfaceContactInput and
+// evaluate_surface_contact(input)); b and A are petsc4py objects.
 #include <caster_petsc.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <hypercontact/assemble_surface.hpp>
 
-#include "array.hpp"
+#include "owned_inputs.hpp"
 
 namespace hypercontact::python {
 
 void declare_assemble_surface(py::module_& m) {
-  py::class_<SurfaceContactState>(m, "SurfaceContactState", "Output of assemble_surface_contact")
-      .def_property_readonly("facet", [](const SurfaceContactState& s) { return to_numpy_table(s.facet, 1); })
-      .def_property_readonly("feature", [](const SurfaceContactState& s) { return to_numpy_table(s.feature, 1); })
-      .def_property_readonly("status", [](const SurfaceContactState& s) { return to_numpy_table(s.status, 1); })
-      .def_property_readonly("xi", [](const SurfaceContactState& s) { return to_numpy_table(s.xi, 2); })
-      .def_property_readonly("gap", [](const SurfaceContactState& s) { return to_numpy_table(s.gap, 1); })
-      .def_property_readonly("pressure", [](const SurfaceContactState& s) { return to_numpy_table(s.pressure, 1); })
-      .def_property_readonly("normal", [](const SurfaceContactState& s) { return to_numpy_table(s.normal, 3); })
-      .def_readonly("force", &SurfaceContactState::force,
-                    "force of the master on the slave body, -sum of the slave residuals (3,)")
-      .def_readonly("num_closed", &SurfaceContactState::num_closed);
-
   auto input = [](const RealArray& x, const IndexArray& point_nodes, const RealArray& point_weights,
                   const RealArray& point_area, const IndexArray& facets,
                   const IndexArray& edge_neighbour, const IndexArray& offsets,
                   const IndexArray& candidates, double eps_n, const IndexArray& dofs,
                   const RealArray& multipliers, double smoothing) {
-    check_shape(multipliers, "multipliers", {any});
-    check_shape(x, "x", {any, 3});
-    check_shape(point_area, "point_area", {any});
-    check_shape(point_nodes, "point_nodes", {point_area.shape(0), 4});
-    check_shape(point_weights, "point_weights", {point_area.shape(0), 4});
-    check_shape(facets, "facets", {any, 4});
-    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), 4});
-    check_shape(offsets, "offsets", {point_area.shape(0) + 1});
-    check_shape(candidates, "candidates", {any});
-    check_shape(dofs, "dofs", {x.shape(0), 3});
-    return SurfaceContactInput{as_span(x),       as_span(point_nodes), as_span(point_weights),
-                               as_span(point_area), as_span(facets),   as_span(edge_neighbour),
-                               as_span(offsets), as_span(candidates),  as_span(dofs),
-                               eps_n,            as_span(multipliers), smoothing};
+    return OwnedSurfaceContactInput{x,       point_nodes, point_weights, point_area,
+                                    facets,  edge_neighbour, offsets,    candidates,
+                                    dofs,    eps_n,       multipliers,   smoothing};
   };
   const char* doc_args =
       "x (nn, 3) current coordinates of the contact nodes; point_nodes, point_weights (np, 4);\n"
@@ -53,7 +31,7 @@ void declare_assemble_surface(py::module_& m) {
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
               double eps_n, const IndexArray& dofs, const RealArray& lam, double smoothing) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), nullptr,
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing).view(), nullptr,
                                         nullptr);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
@@ -66,7 +44,7 @@ void declare_assemble_surface(py::module_& m) {
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
               double eps_n, const IndexArray& dofs, Vec b, const RealArray& lam, double smoothing) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), b, nullptr);
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing).view(), b, nullptr);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
       py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),
@@ -78,7 +56,7 @@ void declare_assemble_surface(py::module_& m) {
       [input](const RealArray& x, const IndexArray& pn, const RealArray& pw, const RealArray& pa,
               const IndexArray& f, const IndexArray& en, const IndexArray& o, const IndexArray& c,
               double eps_n, const IndexArray& dofs, Mat A, const RealArray& lam, double smoothing) {
-        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing), nullptr, A);
+        return assemble_surface_contact(input(x, pn, pw, pa, f, en, o, c, eps_n, dofs, lam, smoothing).view(), nullptr, A);
       },
       py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"), py::arg("point_area"),
       py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"), py::arg("candidates"),

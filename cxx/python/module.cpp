@@ -5,6 +5,12 @@ void declare_obstacle(pybind11::module_& m);
 void declare_normal_penalty(pybind11::module_& m);
 void declare_nodal_area(pybind11::module_& m);
 void declare_contact_search(pybind11::module_& m);
+void declare_contact_elements(pybind11::module_& m);
+void declare_rigid_contact(pybind11::module_& m);
+void declare_rigid_contact_friction(pybind11::module_& m);
+void declare_surface_contact(pybind11::module_& m);
+void declare_surface_contact_friction(pybind11::module_& m);
+void declare_assembly(pybind11::module_& m);
 void declare_assemble_rigid(pybind11::module_& m);
 void declare_assemble_friction(pybind11::module_& m);
 void declare_assemble_surface(pybind11::module_& m);
@@ -17,6 +23,13 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_normal_penalty(m);
   hypercontact::python::declare_nodal_area(m);
   hypercontact::python::declare_contact_search(m);
+  hypercontact::python::declare_contact_elements(m);
+  hypercontact::python::declare_rigid_contact(m);
+  hypercontact::python::declare_rigid_contact_friction(m);
+  hypercontact::python::declare_surface_contact(m);
+  hypercontact::python::declare_surface_contact_friction(m);
+  hypercontact::python::declare_assembly(m);
+  // The positional interface of before the input structs, kept until the Python side switches.
   hypercontact::python::declare_assemble_rigid(m);
   hypercontact::python::declare_assemble_friction(m);
   hypercontact::python::declare_assemble_surface(m);

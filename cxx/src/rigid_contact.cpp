@@ -5,39 +5,95 @@
 
 namespace hypercontact {
 
+namespace detail {
+
+void check_rigid_sizes(std::span<const double> x, std::span<const double> area,
+                       std::span<const double> multipliers, const char* who) {
+  const std::size_t n = area.size();
+  if (x.size() != 3 * n)
+    throw std::invalid_argument(std::string(who) + ": x has " + std::to_string(x.size()) +
+                                " entries, expected 3 × len(area) = " + std::to_string(3 * n));
+  if (!multipliers.empty() && multipliers.size() != n)
+    throw std::invalid_argument(std::string(who) + ": multipliers has " +
+                                std::to_string(multipliers.size()) + " entries, expected " +
+                                std::to_string(n) + " (one per slave node) or none");
+}
+
+void check_rigid_input(const RigidContactInput& in, const char* who) {
+  check_rigid_sizes(in.x, in.area, in.multipliers, who);
+  if (in.dofs.size() != in.x.size())
+    throw std::invalid_argument(std::string(who) + ": dofs has " + std::to_string(in.dofs.size()) +
+                                " entries, expected " + std::to_string(in.x.size()) +
+                                " (3 per slave node, like x)");
+}
+
+Eigen::Vector3d slave_node(std::span<const double> x, std::size_t i, const char* who) {
+  const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+  if (!xi.allFinite())
+    throw std::runtime_error(std::string(who) + ": coordinates of slave node " +
+                             std::to_string(i) + " are not finite");
+  return xi;
+}
+
+double multiplier(std::span<const double> multipliers, std::size_t i, const char* who) {
+  if (multipliers.empty()) return 0.0;
+  if (!(multipliers[i] >= 0) || !std::isfinite(multipliers[i]))
+    throw std::invalid_argument(std::string(who) + ": multiplier of slave node " +
+                                std::to_string(i) + " must be finite and >= 0");
+  return multipliers[i];
+}
+
+}  // namespace detail
+
+RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x,
+                                    double area, double eps_n, double lambda, double smoothing) {
+  const ObstacleProjection projection = project(obstacle, x);
+  return {projection,
+          normal_penalty(augmented_projection(projection, lambda, eps_n), area, eps_n, smoothing)};
+}
+
 std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                                      std::span<const double> x,
                                                      std::span<const double> area, double eps_n,
                                                      std::span<const double> multipliers,
                                                      double smoothing) {
-  if (x.size() != 3 * area.size())
-    throw std::invalid_argument(
-        "evaluate_rigid_contact: x has " + std::to_string(x.size()) +
-        " entries, expected 3 × len(area) = " + std::to_string(3 * area.size()));
-  if (!multipliers.empty() && multipliers.size() != area.size())
-    throw std::invalid_argument("evaluate_rigid_contact: multipliers has " +
-                                std::to_string(multipliers.size()) + " entries, expected " +
-                                std::to_string(area.size()) + " (one per slave node) or none");
+  constexpr const char* who = "evaluate_rigid_contact";
+  detail::check_rigid_sizes(x, area, multipliers, who);
   std::vector<RigidContactNode> nodes;
   nodes.reserve(area.size());
   for (std::size_t i = 0; i < area.size(); ++i) {
-    const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-    if (!xi.allFinite())
-      throw std::runtime_error("evaluate_rigid_contact: coordinates of slave node " +
-                               std::to_string(i) + " are not finite");
-    const ObstacleProjection projection = project(obstacle, xi);
-    if (multipliers.empty()) {
-      nodes.push_back({projection, normal_penalty(projection, area[i], eps_n, smoothing)});
-      continue;
-    }
-    if (!(multipliers[i] >= 0) || !std::isfinite(multipliers[i]))
-      throw std::invalid_argument("evaluate_rigid_contact: multiplier of slave node " +
-                                  std::to_string(i) + " must be finite and >= 0");
-    ObstacleProjection shifted = projection;
-    shifted.gap -= multipliers[i] / eps_n;
-    nodes.push_back({projection, normal_penalty(shifted, area[i], eps_n, smoothing)});
+    const Eigen::Vector3d xi = detail::slave_node(x, i, who);
+    const double lambda = detail::multiplier(multipliers, i, who);
+    nodes.push_back(rigid_contact_node(obstacle, xi, area[i], eps_n, lambda, smoothing));
   }
   return nodes;
+}
+
+RigidContactEvaluation evaluate_rigid_contact(const RigidContactInput& in) {
+  constexpr const char* who = "evaluate_rigid_contact";
+  detail::check_rigid_input(in, who);
+  const std::size_t n = in.area.size();
+  RigidContactEvaluation out{{{}, {}, Eigen::Vector3d::Zero(), 0}, {}};
+  out.gap.reserve(n);
+  out.pressure.reserve(n);
+  out.elements.numbering = DofNumbering::Local;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d xi = detail::slave_node(in.x, i, who);
+    const double lambda = detail::multiplier(in.multipliers, i, who);
+    const RigidContactNode node =
+        rigid_contact_node(in.obstacle, xi, in.area[i], in.eps_n, lambda, in.smoothing);
+    const NodalContact& c = node.contact;
+    out.gap.push_back(node.projection.gap);
+    out.pressure.push_back(c.pressure);
+    if (!c.closed) continue;
+    ++out.num_closed;
+    out.force -= c.residual;
+    ContactElements::Slot e = out.elements.append(static_cast<std::int32_t>(i), 3, 3);
+    for (int k = 0; k < 3; ++k) e.rows[k] = e.columns[k] = in.dofs[3 * i + k];
+    e.residual = c.residual;
+    e.tangent = c.tangent;
+  }
+  return out;
 }
 
 }  // namespace hypercontact

@@ -1,10 +1,10 @@
 // Internal: the narrow phase of deformable–deformable contact shared by the frictionless and the
-// frictional assembly (assemble_surface.cpp, assemble_surface_friction.cpp): input checks, the
-// master surface's rim nodes, and the pairing of one slave point (closest candidate facet, the
-// rim continued by kOverhang, OffSurface classification, the touch tolerance).
+// frictional evaluation: input checks, the master surface's rim nodes, and the pairing of one
+// slave point (closest candidate facet, the rim continued by kOverhang, OffSurface
+// classification, the touch tolerance).
 #pragma once
 
-#include <hypercontact/assemble_surface.hpp>
+#include <hypercontact/surface_contact.hpp>
 #include <hypercontact/facet_projection.hpp>
 #include <hypercontact/node_to_surface.hpp>
 #include <vector>
@@ -40,6 +40,10 @@ SlavePointPairing pair_slave_point(const SurfaceContactInput& in, const std::vec
 bool closed_normal_element(const SurfaceContactInput& in, const std::vector<char>& boundary_node,
                            std::size_t p, SurfaceContactState& s, SlavePointPairing& pr,
                            NodeCoordinates& master, SurfaceContact& e);
+
+/// The dofs (3 per node) of `nodes`, then of the nodes of master facet `facet`, into out.
+void element_dofs(const SurfaceContactInput& in, std::span<const std::int32_t> nodes,
+                  std::int32_t facet, std::span<std::int32_t> out);
 
 /// s with every per-point array sized for np points and the totals zero.
 void init_state(SurfaceContactState& s, std::size_t np);

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "petsc_objects.hpp"
+
 namespace hypercontact {
 namespace {
 
@@ -24,29 +26,6 @@ NodalContact expected(std::size_t i) {
   return normal_penalty(project(tilted, xi), area[i], eps_n);
 }
 
-/// An n × n sequential AIJ matrix with the local-to-global mapping local i → global l2g[i].
-Mat create_matrix(const std::array<PetscInt, n>& l2g) {
-  Mat A;
-  ISLocalToGlobalMapping map;
-  EXPECT_EQ(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, n, nullptr, &A), 0);
-  EXPECT_EQ(
-      ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, n, l2g.data(), PETSC_COPY_VALUES, &map), 0);
-  EXPECT_EQ(MatSetLocalToGlobalMapping(A, map, map), 0);
-  ISLocalToGlobalMappingDestroy(&map);
-  return A;
-}
-
-/// The assembled matrix as a dense row-major array.
-std::array<double, n * n> dense(Mat A) {
-  EXPECT_EQ(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), 0);
-  EXPECT_EQ(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), 0);
-  std::array<PetscInt, n> all;
-  for (PetscInt i = 0; i < n; ++i) all[i] = i;
-  std::array<double, n * n> values;
-  EXPECT_EQ(MatGetValues(A, n, all.data(), n, all.data(), values.data()), 0);
-  return values;
-}
-
 /// Expected dense matrix: K_i at the mapped rows/columns of the non-negative dofs.
 std::array<double, n * n> expected_dense(const std::array<PetscInt, n>& l2g) {
   std::array<double, n * n> values{};
@@ -59,13 +38,13 @@ std::array<double, n * n> expected_dense(const std::array<PetscInt, n>& l2g) {
 }
 
 void expect_tangent_placement(const std::array<PetscInt, n>& l2g) {
-  Mat A = create_matrix(l2g);
+  Mat A = test::create_matrix(n, std::vector<PetscInt>(l2g.begin(), l2g.end()));
   assemble_rigid_tangent(tilted, x, area, eps_n, dofs, A);
   assemble_rigid_tangent(tilted, x, area, eps_n, dofs, A);  // adds, does not overwrite
-  const std::array<double, n* n> values = dense(A);
+  const Eigen::MatrixXd values = test::dense(A);
   const std::array<double, n* n> reference = expected_dense(l2g);
   for (PetscInt k = 0; k < n * n; ++k)
-    EXPECT_DOUBLE_EQ(values[k], 2 * reference[k]) << "row " << k / n << ", column " << k % n;
+    EXPECT_DOUBLE_EQ(values(k / n, k % n), 2 * reference[k]) << "row " << k / n << ", column " << k % n;
   MatDestroy(&A);
 }
 
@@ -111,11 +90,3 @@ TEST(AssembleRigid, RejectsBadDofs) {
 
 }  // namespace
 }  // namespace hypercontact
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  if (PetscInitialize(nullptr, nullptr, nullptr, nullptr) != 0) return 1;
-  const int result = RUN_ALL_TESTS();
-  PetscFinalize();
-  return result;
-}

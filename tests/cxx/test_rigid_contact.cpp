@@ -1,4 +1,7 @@
-// Evaluation of all slave nodes against one obstacle, and its input checks.
+// Evaluation of all slave nodes against one obstacle, and its input checks; the evaluation with
+// element contributions: each element is its node's normal penalty on the node's dofs, and the
+// stored tangent is the derivative of the stored residual (central differences) on a plane, the
+// face, edge and vertex of a box, a cylinder, with multipliers and with smoothing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,6 +9,8 @@
 #include <hypercontact/rigid_contact.hpp>
 #include <stdexcept>
 #include <vector>
+
+#include "contact_elements_fd.hpp"
 
 namespace hypercontact {
 namespace {
@@ -87,6 +92,100 @@ TEST(RigidContact, AugmentedLagrangianShiftsTheGap) {
                std::invalid_argument);
   EXPECT_THROW(evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, std::vector<double>{1, 2}),
                std::invalid_argument);
+}
+
+// --- The evaluation with element contributions ------------------------------------------------
+
+/// Slave nodes against an obstacle, each coordinate its own dof.
+struct RigidScene {
+  Obstacle obstacle;
+  std::vector<double> x, area, multipliers;
+  double eps_n = 50.0, smoothing = 0.0;
+  std::vector<std::int32_t> dofs = test::identity_dofs(x.size());
+
+  RigidContactInput input(std::span<const double> y) const {
+    return {obstacle, y, area, dofs, eps_n, multipliers, smoothing};
+  }
+  RigidContactEvaluation evaluate(std::span<const double> y) const {
+    return evaluate_rigid_contact(input(y));
+  }
+  double tangent_error() const {
+    return test::dense_tangent_error([this](std::span<const double> y) { return evaluate(y); }, x);
+  }
+};
+
+const Obstacle unit_box = RigidBox{{-1, -1, -1}, {1, 1, 1}};
+
+/// Box nodes, λ = 2 (λ/ε_N = 0.04) except node 4: inside under the top face (Face), outside by an
+/// edge and by a vertex within λ/ε_N (Edge, Vertex: closed by λ), far above (open), and a
+/// penalty node inside (λ = 0).
+RigidScene box_scene() {
+  return {unit_box,
+          {0.2, 0.1, 0.97, 1.02, 0.3, 1.01, 1.01, 1.02, 1.01, 0.2, 0.1, 1.5, 0.1, -0.3, 0.9},
+          {0.3, 0.2, 0.4, 0.5, 0.25},
+          {2.0, 2.0, 2.0, 2.0, 0.0}};
+}
+
+TEST(RigidContactEvaluation, ElementsAreTheNodesPenaltyOnTheirDofs) {
+  RigidScene scene = box_scene();
+  scene.dofs[4] = -1;  // node 1's y is constrained: kept in the element, skipped by assembly
+  const RigidContactEvaluation e = scene.evaluate(scene.x);
+  const std::vector<Feature> features{Feature::Face, Feature::Edge, Feature::Vertex, Feature::Face,
+                                      Feature::Face};
+  ASSERT_EQ(e.elements.size(), 4u);
+  EXPECT_EQ(e.elements.point, (std::vector<std::int32_t>{0, 1, 2, 4}));
+  EXPECT_EQ(e.elements.numbering, DofNumbering::Local);
+  EXPECT_EQ(e.num_closed, 4);
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0, k = 0; i < 5; ++i) {
+    // The old path: the projection, the gap shifted by λ/ε_N, normal_penalty.
+    const Eigen::Vector3d xi(&scene.x[3 * i]);
+    const ObstacleProjection p = project(unit_box, xi);
+    EXPECT_EQ(p.feature, features[i]) << "node " << i;
+    ObstacleProjection shifted = p;
+    shifted.gap -= scene.multipliers[i] / scene.eps_n;
+    const NodalContact c = normal_penalty(shifted, scene.area[i], scene.eps_n);
+    EXPECT_EQ(e.gap[i], p.gap);
+    EXPECT_EQ(e.pressure[i], c.pressure);
+    if (!c.closed) continue;
+    const std::size_t el = k++;
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_EQ(e.elements.rows(el)[j], scene.dofs[3 * i + j]);
+      EXPECT_EQ(e.elements.columns(el)[j], scene.dofs[3 * i + j]);
+      EXPECT_NEAR(e.elements.element_residual(el)[j], c.residual[j], 1e-14 * c.residual.norm());
+    }
+    EXPECT_LE(test::relative_error(e.elements.element_tangent(el), c.tangent), 1e-14);
+    force -= c.residual;
+  }
+  EXPECT_LE((e.force - force).norm(), 1e-14 * force.norm());
+}
+
+TEST(RigidContactEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) {
+  const RigidScene plane_scene{RigidPlane{{0, 0, 0.1}, Eigen::Vector3d(0.3, -0.2, 1).normalized()},
+                               {0.1, 0.2, -0.05, -0.3, 0.1, 0.02, 0.0, 0.0, 0.5},
+                               {0.5, 0.25, 0.75}};
+  const RigidScene cylinder_scene{
+      RigidCylinder{{0, 0, 1}, Eigen::Vector3d(1, 0.3, 0).normalized(), 1.0},
+      {0.1, 0.05, 0.03, -0.2, 0.4, 0.15, 0.3, -0.6, 0.3},
+      {0.5, 0.25, 0.75}};
+  RigidScene smoothed = box_scene();
+  smoothed.smoothing = 0.05;  // node 3 (g = 0.5 − 0.04) stays open, the others in or below the band
+  for (const RigidScene* scene : {&plane_scene, &cylinder_scene}) {
+    const RigidContactEvaluation e = scene->evaluate(scene->x);
+    ASSERT_GE(e.elements.size(), 2u);
+    EXPECT_LE(scene->tangent_error(), 1e-6);
+  }
+  const RigidScene box = box_scene();
+  EXPECT_EQ(box.evaluate(box.x).elements.size(), 4u);  // face, edge, vertex and the penalty node
+  EXPECT_LE(box.tangent_error(), 1e-6);
+  EXPECT_EQ(smoothed.evaluate(smoothed.x).elements.size(), 4u);
+  EXPECT_LE(smoothed.tangent_error(), 1e-6);
+}
+
+TEST(RigidContactEvaluation, RejectsDofsOfTheWrongSize) {
+  RigidScene scene = box_scene();
+  scene.dofs.pop_back();
+  EXPECT_THROW(scene.evaluate(scene.x), std::invalid_argument);
 }
 
 }  // namespace

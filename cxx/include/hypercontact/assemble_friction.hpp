@@ -1,12 +1,12 @@
-// Assembly of rigid-obstacle Coulomb friction into PETSc objects (with assemble_rigid, the only
-// PETSc users).
+// Assembly of the friction part of rigid-obstacle Coulomb contact into PETSc objects (its normal
+// part is assemble_rigid's): the interface before evaluations (rigid_contact_friction.hpp) and
+// assembly.hpp, kept as thin wrappers over them.
 #pragma once
 
 #include <petscmat.h>
 
 #include <cstdint>
-#include <hypercontact/coulomb_friction.hpp>
-#include <hypercontact/obstacle.hpp>
+#include <hypercontact/rigid_contact_friction.hpp>
 #include <span>
 #include <vector>
 
@@ -25,7 +25,8 @@ struct RigidFrictionState {
 /// xi_old, t_old: n × 3 history of the last converged step (xi_old already moved with the
 /// obstacle); multipliers (augmented Lagrangian, or empty): the friction's normal pressure is
 /// then p_N = ⟨λ − ε_N g⟩, as the normal part's (evaluate_rigid_contact); other arguments as
-/// assemble_rigid_residual.
+/// assemble_rigid_residual. = add_residual(evaluate_rigid_friction(input without the normal
+/// part), b).
 RigidFrictionState assemble_rigid_friction_residual(
     const Obstacle& obstacle, std::span<const double> x, std::span<const double> area, double eps_n,
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
@@ -34,6 +35,7 @@ RigidFrictionState assemble_rigid_friction_residual(
 
 /// Adds K_T,i = ∂r_T,i/∂x_i (not symmetric in slip) with MatSetValuesLocal (ADD_VALUES; rows and
 /// columns of −1 dofs skipped). Arguments as assemble_rigid_friction_residual.
+/// = add_tangent(evaluate_rigid_friction(input without the normal part), A).
 void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const double> x,
                                      std::span<const double> area, double eps_n, double eps_t,
                                      double mu, std::span<const double> xi_old,

@@ -1,81 +1,18 @@
-// Deformable–deformable contact: narrow phase over the broad phase's candidate facets, the
-// node-to-surface (or Gauss-point-to-surface) normal penalty element, and its assembly into
-// PETSc objects with global indices (rows of master nodes may be owned by another rank).
+// Deformable–deformable normal contact assembled into PETSc objects with global indices (rows of
+// master nodes may be owned by another rank): the interface before evaluations
+// (surface_contact.hpp) and assembly.hpp, kept as a thin wrapper over them.
 #pragma once
 
 #include <petscmat.h>
 #include <petscvec.h>
 
-#include <Eigen/Core>
-#include <cstdint>
-#include <span>
-#include <vector>
+#include <hypercontact/surface_contact.hpp>
 
 namespace hypercontact {
 
-/// How one slave point was paired.
-enum class PairingStatus : std::int32_t {
-  NoCandidate = 0,  ///< the broad phase found no master facet near the point
-  OffSurface = 1,   ///< closest point on the master surface's boundary, point outside its extent
-  Paired = 2,       ///< projected onto a face, an inner edge or an inner vertex
-};
-
-/// Per slave point and total output of one evaluation.
-struct SurfaceContactState {
-  std::vector<std::int32_t> facet;    ///< master facet of the closest point (−1: none)
-  std::vector<std::int32_t> feature;  ///< 0 face, 1 edge, 2 vertex, −1 none
-  std::vector<std::int32_t> status;   ///< PairingStatus
-  std::vector<double> xi;             ///< ξ* on the facet, 2 per point
-  std::vector<double> gap;            ///< signed gap g (> 0 open; 0 when not paired)
-  std::vector<double> pressure;       ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
-  std::vector<double> normal;         ///< unit normal used for the sign of g, 3 per point
-  Eigen::Vector3d force;              ///< force of the master on the slave body, −Σ r (slave part)
-  std::int32_t num_closed;            ///< points with g ≤ 0 (augmented: with p_N > 0)
-};
-
-/// Geometry and numbering of one slave surface against one master surface.
-///
-/// x: nn × 3 current coordinates of the contact nodes (all nodes of both surfaces);
-/// point_nodes, point_weights: np × 4 — slave point p is x_p = Σ_i M_pi x_{node_pi} over the
-///   entries with node ≥ 0 (nodal integration: one node with M = 1; Gauss points: 4 nodes);
-/// point_area: np — the point's weight w_p (nodal area or det J × Gauss weight, reference);
-/// facets: nf × 4 master quadrilaterals, nodes counter-clockwise seen from outside the master;
-/// edge_neighbour: nf × 4 — the master facet across edge k (node k → k+1) of facet f, −1 on the
-///   master surface's boundary;
-/// offsets (np + 1), candidates: the broad phase's candidate facets of each point (CSR);
-/// dofs: nn × 3 global PETSc indices, −1 for a constrained dof (skipped: Dirichlet rows and
-///   columns stay exact).
-struct SurfaceContactInput {
-  std::span<const double> x;
-  std::span<const std::int32_t> point_nodes;
-  std::span<const double> point_weights;
-  std::span<const double> point_area;
-  std::span<const std::int32_t> facets;
-  std::span<const std::int32_t> edge_neighbour;
-  std::span<const std::int32_t> offsets;
-  std::span<const std::int32_t> candidates;
-  std::span<const std::int32_t> dofs;
-  double eps_n;
-  /// Augmented Lagrangian: λ_N ≥ 0 per slave point (np entries), or empty (all zero: penalty).
-  /// A point with λ_N > 0 is active where ⟨λ_N − ε_N ĝ⟩ > 0 (node_to_surface), gaps up to
-  /// λ_N/ε_N included; a point with λ_N = 0 is evaluated exactly as without multipliers.
-  std::span<const double> multipliers = {};
-  /// Smoothing δ ≥ 0 of the normal law (penetration.hpp, node_to_surface): 0 is the Macaulay
-  /// bracket; δ > 0 makes points with g < λ_N/ε_N + δ active.
-  double smoothing = 0.0;
-};
-
-/// Evaluates every slave point: closest point over its candidate facets (ties: face before edge
-/// before vertex, then the lower facet index); the sign of the gap from the facet normal (face),
-/// the sum of the two facets' centroid normals (inner edge) or of all facets' centroid normals
-/// around the node (inner vertex); a point whose closest point is on the master surface's
-/// boundary is OffSurface (open) unless it lies within the facet's extent
-/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_p − x_M). A closed point (g ≤ 0; with a multiplier λ_N > 0:
-/// ⟨λ_N − ε_N ĝ⟩ > 0, see node_to_surface) adds the element residual
-/// and tangent of node_to_surface (energy ½ w ε_N g² with all curvature terms) into b and A
-/// (either may be null) with VecSetValues / MatSetValues, global indices, ADD_VALUES; the caller
-/// assembles them. Throws std::invalid_argument on inconsistent sizes or indices out of range,
-/// std::runtime_error if PETSc reports an error.
+/// evaluate_surface_contact(in), then add_residual into b and add_tangent into A (either may be
+/// null; VecSetValues / MatSetValues, global indices, ADD_VALUES; the caller assembles them).
+/// Throws as evaluate_surface_contact, and std::runtime_error if PETSc reports an error.
 SurfaceContactState assemble_surface_contact(const SurfaceContactInput& in, Vec b, Mat A);
 
 }  // namespace hypercontact

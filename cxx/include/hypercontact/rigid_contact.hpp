@@ -1,6 +1,9 @@
-// Normal penalty contact of a set of slave nodes against one rigid obstacle (PETSc-free).
+// Normal penalty contact of a set of slave nodes against one rigid obstacle (PETSc-free): the
+// kernel of one node, and the evaluation of all nodes with their element contributions.
 #pragma once
 
+#include <cstdint>
+#include <hypercontact/contact_elements.hpp>
 #include <hypercontact/normal_penalty.hpp>
 #include <hypercontact/obstacle.hpp>
 #include <span>
@@ -10,24 +13,79 @@ namespace hypercontact {
 
 /// One slave node: its projection onto the obstacle and its penalty contribution.
 struct RigidContactNode {
-  ObstacleProjection projection;
+  ObstacleProjection projection;  ///< with the true gap g
   NodalContact contact;
 };
 
-/// Evaluates, for every slave node i with current position x_i and nodal area A_i,
-///   projection_i = project(obstacle, x_i),   contact_i = normal_penalty(projection_i, A_i, ε_N).
-/// With multipliers λ (augmented Lagrangian, one pressure per node, ≥ 0; empty: pure penalty)
-/// the penalty acts on the shifted gap g̃_i = g_i − λ_i/ε_N: contact_i = normal_penalty with
-/// gap g̃_i, so p_N,i = ⟨λ_i − ε_N g_i⟩, r_i = A_i ε_N g̃_i n_i and K_i = A_i ε_N (n_i ⊗ n_i +
-/// g̃_i ∂n_i/∂x) (λ is held fixed during a Newton solve; its Uzawa update is the caller's).
-/// projection_i keeps the true gap g_i. smoothing: the band δ of normal_penalty (0: none).
-/// x: n × 3 row-major; area: n; multipliers: n or empty.
-/// Throws std::invalid_argument on inconsistent sizes or bad parameters, and
-/// std::runtime_error naming the node if a coordinate is not finite.
+/// The projection p with its gap shifted to g − λ/ε_N: the penalty law on it is the augmented
+/// Lagrangian law p_N = ⟨λ − ε_N g⟩ (λ = 0: p itself, operation for operation).
+inline ObstacleProjection augmented_projection(const ObstacleProjection& p, double lambda,
+                                               double eps_n) {
+  ObstacleProjection shifted = p;
+  shifted.gap -= lambda / eps_n;
+  return shifted;
+}
+
+/// The node at x with tributary area A and multiplier λ ≥ 0 (0: pure penalty):
+///   projection = project(obstacle, x),
+///   contact    = normal_penalty(augmented_projection(projection, λ, ε_N), A, ε_N, δ),
+/// so that p_N = ⟨λ − ε_N g⟩, r = A ε_N g̃ n and K = A ε_N (n ⊗ n + g̃ ∂n/∂x) with
+/// g̃ = g − λ/ε_N (λ is held fixed during a Newton solve; its Uzawa update is the caller's).
+/// Throws as normal_penalty.
+RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x,
+                                    double area, double eps_n, double lambda = 0.0,
+                                    double smoothing = 0.0);
+
+/// rigid_contact_node of every slave node i (x: n × 3 row-major, area: n, multipliers: n or
+/// empty, smoothing: the band δ of normal_penalty, 0: none).
+/// Throws std::invalid_argument on inconsistent sizes or bad parameters (a multiplier < 0 or not
+/// finite), and std::runtime_error naming the node if a coordinate is not finite.
 std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                                      std::span<const double> x,
                                                      std::span<const double> area, double eps_n,
                                                      std::span<const double> multipliers = {},
                                                      double smoothing = 0.0);
+
+/// Slave nodes against one rigid obstacle.
+struct RigidContactInput {
+  Obstacle obstacle;
+  std::span<const double> x;            ///< n × 3 current coordinates, row-major
+  std::span<const double> area;         ///< n tributary areas A_i ≥ 0
+  std::span<const std::int32_t> dofs;   ///< n × 3 process-local dofs, −1: constrained
+  double eps_n;                         ///< penalty ε_N > 0
+  std::span<const double> multipliers = {};  ///< n augmented-Lagrangian λ_i ≥ 0, or empty
+  double smoothing = 0.0;               ///< band δ ≥ 0 of the smoothed law (penetration.hpp)
+};
+
+/// Per-node and total output of an evaluation.
+struct RigidContactState {
+  std::vector<double> gap;       ///< g_i per slave node
+  std::vector<double> pressure;  ///< p_N,i = ε_N ⟨−g_i⟩ (augmented: ⟨λ_i − ε_N g_i⟩)
+  Eigen::Vector3d force;         ///< normal force of the obstacle on the body, −Σ_i r_i
+  std::int32_t num_closed;       ///< number of active nodes (g_i ≤ 0 without λ and δ)
+};
+
+/// The state and, for every active node, its element: rows = columns = dofs(i, :),
+/// R = r_i, K = K_i (3 × 3), process-local numbering.
+struct RigidContactEvaluation : RigidContactState {
+  ContactElements elements;
+};
+
+/// rigid_contact_node of every slave node, once. Throws as the vector form above, and
+/// std::invalid_argument unless dofs has 3 entries per node.
+RigidContactEvaluation evaluate_rigid_contact(const RigidContactInput& in);
+
+namespace detail {
+/// Throws std::invalid_argument (prefixed by `who`) unless x holds 3 entries and multipliers 1 or
+/// none per node of `area`.
+void check_rigid_sizes(std::span<const double> x, std::span<const double> area,
+                       std::span<const double> multipliers, const char* who);
+/// As check_rigid_sizes, and dofs must hold 3 entries per node.
+void check_rigid_input(const RigidContactInput& in, const char* who);
+/// x_i, or std::runtime_error naming the node if it is not finite.
+Eigen::Vector3d slave_node(std::span<const double> x, std::size_t i, const char* who);
+/// λ_i (0 without multipliers); std::invalid_argument unless it is finite and ≥ 0.
+double multiplier(std::span<const double> multipliers, std::size_t i, const char* who);
+}  // namespace detail
 
 }  // namespace hypercontact

@@ -1,0 +1,85 @@
+// Deformable–deformable normal contact (PETSc-free): a slave surface against a master surface,
+// each slave point paired by the narrow phase with its closest master facet and, if closed,
+// evaluated with the node-to-surface (or Gauss-point-to-surface) penalty element.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <hypercontact/contact_elements.hpp>
+#include <span>
+#include <vector>
+
+namespace hypercontact {
+
+/// How one slave point was paired.
+enum class PairingStatus : std::int32_t {
+  NoCandidate = 0,  ///< the broad phase found no master facet near the point
+  OffSurface = 1,   ///< closest point on the master surface's boundary, point outside its extent
+  Paired = 2,       ///< projected onto a face, an inner edge or an inner vertex
+};
+
+/// Per slave point and total output of one evaluation.
+struct SurfaceContactState {
+  std::vector<std::int32_t> facet;    ///< master facet of the closest point (−1: none)
+  std::vector<std::int32_t> feature;  ///< 0 face, 1 edge, 2 vertex, −1 none
+  std::vector<std::int32_t> status;   ///< PairingStatus
+  std::vector<double> xi;             ///< ξ* on the facet, 2 per point
+  std::vector<double> gap;            ///< signed gap g (> 0 open; 0 when not paired)
+  std::vector<double> pressure;       ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
+  std::vector<double> normal;         ///< unit normal used for the sign of g, 3 per point
+  Eigen::Vector3d force;              ///< force of the master on the slave body, −Σ r (slave part)
+  std::int32_t num_closed;            ///< points with g ≤ 0 (augmented: with p_N > 0)
+};
+
+/// Geometry and numbering of one slave surface against one master surface.
+///
+/// x: nn × 3 current coordinates of the contact nodes (all nodes of both surfaces);
+/// point_nodes, point_weights: np × 4 — slave point p is x_p = Σ_i M_pi x_{node_pi} over the
+///   entries with node ≥ 0 (nodal integration: one node with M = 1; Gauss points: 4 nodes);
+/// point_area: np — the point's weight w_p (nodal area or det J × Gauss weight, reference);
+/// facets: nf × 4 master quadrilaterals, nodes counter-clockwise seen from outside the master;
+/// edge_neighbour: nf × 4 — the master facet across edge k (node k → k+1) of facet f, −1 on the
+///   master surface's boundary;
+/// offsets (np + 1), candidates: the broad phase's candidate facets of each point (CSR);
+/// dofs: nn × 3 global PETSc indices, −1 for a constrained dof (skipped: Dirichlet rows and
+///   columns stay exact).
+struct SurfaceContactInput {
+  std::span<const double> x;
+  std::span<const std::int32_t> point_nodes;
+  std::span<const double> point_weights;
+  std::span<const double> point_area;
+  std::span<const std::int32_t> facets;
+  std::span<const std::int32_t> edge_neighbour;
+  std::span<const std::int32_t> offsets;
+  std::span<const std::int32_t> candidates;
+  std::span<const std::int32_t> dofs;
+  double eps_n;
+  /// Augmented Lagrangian: λ_N ≥ 0 per slave point (np entries), or empty (all zero: penalty).
+  /// A point with λ_N > 0 is active where ⟨λ_N − ε_N ĝ⟩ > 0 (node_to_surface), gaps up to
+  /// λ_N/ε_N included; a point with λ_N = 0 is evaluated exactly as without multipliers.
+  std::span<const double> multipliers = {};
+  /// Smoothing δ ≥ 0 of the normal law (penetration.hpp, node_to_surface): 0 is the Macaulay
+  /// bracket; δ > 0 makes points with g < λ_N/ε_N + δ active.
+  double smoothing = 0.0;
+};
+
+/// The state and, for every closed point, its element: rows = columns = the dofs of
+/// [the point's slave nodes, the facet's nodes] (3 each), R and K of node_to_surface, global
+/// numbering (rows of master nodes may belong to another rank).
+struct SurfaceContactEvaluation : SurfaceContactState {
+  ContactElements elements;
+};
+
+/// Evaluates every slave point once: closest point over its candidate facets (ties: face before
+/// edge before vertex, then the lower facet index); the gap g = (x_s − x_M)·n with n the facet
+/// normal at the closest point of the winning facet; a point whose closest point is on the master
+/// surface's boundary is OffSurface (open) unless it lies within the facet's extent
+/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_s − x_M) or overhangs the rim by at most 0.05 in ξ (2.5 % of
+/// the facet; then projected onto the facet continued beyond its edge, as a face point). A closed point
+/// (g ≤ touch, touch = 1e-10 × the facet's diagonal; with λ_N > 0 or δ > 0: p_N > 0, see
+/// node_to_surface) keeps the element residual and tangent of node_to_surface (energy ½ w ε_N g²
+/// with all curvature terms). Throws std::invalid_argument on inconsistent sizes or indices out
+/// of range, and as node_to_surface.
+SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in);
+
+}  // namespace hypercontact

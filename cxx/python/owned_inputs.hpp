@@ -1,0 +1,79 @@
+// The kernels' input structs for Python: the same fields, holding the numpy arrays (so that the
+// spans of the C++ input stay valid while the Python object lives); view() checks the shapes and
+// returns the C++ input.
+#pragma once
+
+#include <hypercontact/rigid_contact.hpp>
+#include <hypercontact/surface_contact.hpp>
+#include <hypercontact/surface_contact_friction.hpp>
+
+#include "array.hpp"
+
+namespace hypercontact::python {
+
+/// RigidContactInput: x (n, 3), area (n,), dofs (n, 3) int32, multipliers (n,) or (0,).
+struct OwnedRigidContactInput {
+  Obstacle obstacle;
+  RealArray x, area;
+  IndexArray dofs;
+  double eps_n;
+  RealArray multipliers;
+  double smoothing;
+
+  RigidContactInput view() const {
+    check_shape(x, "x", {any, 3});
+    check_shape(area, "area", {x.shape(0)});
+    check_shape(dofs, "dofs", {x.shape(0), 3});
+    check_shape(multipliers, "multipliers", {any});
+    return {obstacle, as_span(x), as_span(area), as_span(dofs), eps_n, as_span(multipliers),
+            smoothing};
+  }
+};
+
+/// SurfaceContactInput: x (nn, 3); point_nodes, point_weights (np, 4); point_area (np,);
+/// facets, edge_neighbour (nf, 4); offsets (np + 1,), candidates; dofs (nn, 3) int32;
+/// multipliers (np,) or (0,).
+struct OwnedSurfaceContactInput {
+  RealArray x;
+  IndexArray point_nodes;
+  RealArray point_weights, point_area;
+  IndexArray facets, edge_neighbour, offsets, candidates, dofs;
+  double eps_n;
+  RealArray multipliers;
+  double smoothing;
+
+  SurfaceContactInput view() const {
+    check_shape(multipliers, "multipliers", {any});
+    check_shape(x, "x", {any, 3});
+    check_shape(point_area, "point_area", {any});
+    check_shape(point_nodes, "point_nodes", {point_area.shape(0), 4});
+    check_shape(point_weights, "point_weights", {point_area.shape(0), 4});
+    check_shape(facets, "facets", {any, 4});
+    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), 4});
+    check_shape(offsets, "offsets", {point_area.shape(0) + 1});
+    check_shape(candidates, "candidates", {any});
+    check_shape(dofs, "dofs", {x.shape(0), 3});
+    return {as_span(x),       as_span(point_nodes), as_span(point_weights), as_span(point_area),
+            as_span(facets),  as_span(edge_neighbour), as_span(offsets),    as_span(candidates),
+            as_span(dofs),    eps_n,                as_span(multipliers),   smoothing};
+  }
+};
+
+/// SurfaceFrictionInput: the contact plus old_facet (np,) int32, xi_old (np, 2), t_old (np, 3).
+struct OwnedSurfaceFrictionInput {
+  OwnedSurfaceContactInput contact;
+  IndexArray old_facet;
+  RealArray xi_old, t_old;
+  double eps_t, mu;
+
+  SurfaceFrictionInput view() const {
+    SurfaceContactInput c = contact.view();
+    const py::ssize_t np = contact.point_area.shape(0);
+    check_shape(old_facet, "old_facet", {np});
+    check_shape(xi_old, "xi_old", {np, 2});
+    check_shape(t_old, "t_old", {np, 3});
+    return {c, as_span(old_facet), as_span(xi_old), as_span(t_old), eps_t, mu};
+  }
+};
+
+}  // namespace hypercontact::python

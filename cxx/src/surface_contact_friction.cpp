@@ -1,0 +1,98 @@
+#include <hypercontact/node_to_surface.hpp>
+#include <hypercontact/surface_contact_friction.hpp>
+#include <hypercontact/surface_friction.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "surface_pairing.hpp"
+
+namespace hypercontact {
+
+namespace {
+
+constexpr const char* who = "evaluate_surface_friction";
+
+void check_history(const SurfaceFrictionInput& fin) {
+  const std::size_t np = fin.contact.point_area.size();
+  const std::int32_t nf = static_cast<std::int32_t>(fin.contact.facets.size() / 4);
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument(std::string(who) + ": " + what);
+  };
+  if (fin.old_facet.size() != np || fin.xi_old.size() != 2 * np || fin.t_old.size() != 3 * np)
+    fail("old_facet, xi_old, t_old must hold 1, 2, 3 entries per slave point");
+  for (std::int32_t f : fin.old_facet)
+    if (f < -1 || f >= nf) fail("an old facet index is out of range");
+  if (!(fin.eps_t > 0)) fail("eps_t must be > 0");
+  if (!(fin.mu >= 0)) fail("mu must be >= 0");
+}
+
+SurfaceFrictionEvaluation empty_evaluation(std::size_t np) {
+  SurfaceFrictionEvaluation s;
+  detail::init_state(s, np);
+  s.traction.assign(3 * np, 0.0);
+  s.slip_increment.assign(3 * np, 0.0);
+  s.dissipation.assign(np, 0.0);
+  s.stick.assign(np, static_cast<std::int32_t>(StickSlip::Open));
+  s.total_force.setZero();
+  s.elements.numbering = DofNumbering::Global;
+  return s;
+}
+
+/// The friction of paired point p against its current facet, with its history (or none).
+SurfaceFriction point_friction(const SurfaceFrictionInput& fin, std::size_t p,
+                               const detail::SlavePointPairing& pr, const NodeCoordinates& master,
+                               std::int32_t old) {
+  const SurfaceContactInput& in = fin.contact;
+  const bool history = fin.old_facet[p] >= 0;
+  const Eigen::Vector2d xi_old =
+      history ? Eigen::Vector2d(fin.xi_old[2 * p], fin.xi_old[2 * p + 1]) : pr.projection.xi;
+  const Eigen::Vector3d t_old = history ? Eigen::Vector3d(&fin.t_old[3 * p]) : Eigen::Vector3d::Zero();
+  const NodeCoordinates old_master = gather_facet(old, in.facets, 4, in.x);
+  return surface_friction(pr.slave, pr.weights, master, pr.projection, old_master, xi_old, t_old,
+                          in.point_area[p], in.eps_n, fin.eps_t, fin.mu,
+                          in.multipliers.empty() ? 0.0 : in.multipliers[p], in.smoothing);
+}
+
+}  // namespace
+
+SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& fin) {
+  const SurfaceContactInput& in = fin.contact;
+  detail::check_surface_input(in, who);
+  check_history(fin);
+  const std::size_t np = in.point_area.size();
+  const std::vector<char> boundary_node = detail::master_boundary_nodes(in);
+  SurfaceFrictionEvaluation s = empty_evaluation(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    detail::SlavePointPairing pr;
+    NodeCoordinates master;
+    SurfaceContact e;
+    if (!detail::closed_normal_element(in, boundary_node, p, s, pr, master, e)) continue;
+    const bool history = fin.old_facet[p] >= 0;
+    const std::int32_t old = history ? fin.old_facet[p] : pr.facet;
+    const SurfaceFriction fr = point_friction(fin, p, pr, master, old);
+    for (int k = 0; k < 3; ++k) {
+      s.traction[3 * p + k] = fr.traction[k];
+      s.slip_increment[3 * p + k] = fr.slip_increment[k];
+    }
+    s.dissipation[p] = fr.dissipation;
+    s.stick[p] = static_cast<std::int32_t>(fr.state);
+
+    // Rows: slave nodes + current facet; columns: those + old facet.
+    const int ns = static_cast<int>(pr.nodes.size());
+    const int n = 3 * (ns + 4), m = n + 12;
+    ContactElements::Slot slot = s.elements.append(static_cast<std::int32_t>(p), n, m);
+    detail::element_dofs(in, pr.nodes, pr.facet, slot.rows);
+    std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
+    detail::element_dofs(in, {}, old, slot.columns.subspan(n));
+    slot.residual = e.residual + fr.residual.head(n);
+    slot.tangent.leftCols(n) = e.tangent;
+    if (history) slot.tangent += fr.tangent.topRows(n);
+    for (int i = 0; i < ns; ++i) {
+      s.force -= e.residual.segment<3>(3 * i);
+      s.total_force -= slot.residual.segment<3>(3 * i);
+    }
+  }
+  return s;
+}
+
+}  // namespace hypercontact
