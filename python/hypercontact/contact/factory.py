@@ -5,9 +5,10 @@ tolerance of the augmented Lagrangian, the smoothing band δ — are returned in
 :class:`ContactSettings` beside the contacts; the scene is not changed."""
 from dataclasses import dataclass
 
-from .. import _cpp
+import numpy as np
+
 from . import penalty
-from .kernels import surface_arrays
+from .kernels import evaluate
 from .enforcement import AugmentedLagrangian, Penalty
 from .law import Coulomb, Frictionless
 from .pair import Contact
@@ -60,12 +61,7 @@ def _surface_law(entry, settings, geometry, comm):
     law = Coulomb(entry["mu"], settings.eps_t, SurfaceFrictionHistory(geometry), comm)
     # the history before any load: where each point is paired in the reference configuration
     geometry.candidates = geometry.search(geometry.X)
-    h = law.history
-    state = _cpp.evaluate_surface_friction(
-        geometry.X, geometry.point_nodes, geometry.point_weights, geometry.point_area, geometry.facets,
-        geometry.edge_neighbour, *geometry.candidates, settings.eps_n, geometry.dofs, h.facet, h.xi, h.traction,
-        law.eps_t, law.mu, smoothing=settings.smoothing)
-    h.store(surface_arrays(state, frictional=True))
+    law.history.store(evaluate(geometry, law, np.zeros(0), settings.eps_n, settings.smoothing, geometry.X).state)
     geometry.candidates = None
     return law
 
