@@ -11,8 +11,8 @@ from hypercontact.solve.newton import Problem
 
 
 @pytest.mark.parametrize("name, kernels", [
-    ("punch.toml", ("assemble_rigid_residual",)),
-    ("punch_mu0.3_0.toml", ("assemble_rigid_residual", "assemble_rigid_friction_residual")),
+    ("punch.toml", ("evaluate_rigid_contact", "evaluate_rigid_friction")),
+    ("punch_mu0.3_0.toml", ("evaluate_rigid_contact", "evaluate_rigid_friction")),
 ])
 def test_one_contact_evaluation_per_residual_and_per_converged_step(tmp_path, monkeypatch, name, kernels):
     sc = scene.load(ROOT / "scenes" / name, ["mesh.n=4", "mesh.m=1", f"output.dir={tmp_path}",
@@ -38,7 +38,9 @@ def test_one_contact_evaluation_per_residual_and_per_converged_step(tmp_path, mo
     writer = sim.run()
     steps = len(writer.steps)
     assert steps > 1 and residuals[0] > steps
+    # per contact one evaluation (frictional contacts: the normal and friction one) per residual
+    # callback and one per converged state; the tangent, monitor and output add none
     frictional = sum(c.frictional for c in sim.contacts)
-    assert calls["assemble_rigid_residual"] == len(sim.contacts) * (residuals[0] + steps)
-    if "assemble_rigid_friction_residual" in kernels:  # once more in the same evaluation, frictional ones only
-        assert frictional == 1 and calls["assemble_rigid_friction_residual"] == residuals[0] + steps
+    assert frictional == (1 if "mu0.3" in name else 0)
+    assert calls["evaluate_rigid_friction"] == frictional * (residuals[0] + steps)
+    assert calls["evaluate_rigid_contact"] == (len(sim.contacts) - frictional) * (residuals[0] + steps)
