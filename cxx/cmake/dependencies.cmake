@@ -4,8 +4,10 @@ find_package(Eigen3 3.4 QUIET NO_MODULE)
 if(NOT Eigen3_FOUND)
   hypercontact_missing("Eigen 3.4 or newer (Eigen3Config.cmake)" libeigen3-dev)
 endif()
+# The header itself, and the package's target (nanoflannConfig.cmake) that the kernels link.
+find_path(NANOFLANN_INCLUDE_DIR nanoflann.hpp)
 find_package(nanoflann QUIET CONFIG)
-if(NOT nanoflann_FOUND)
+if(NOT NANOFLANN_INCLUDE_DIR OR NOT nanoflann_FOUND)
   hypercontact_missing("nanoflann (nanoflannConfig.cmake; k-d trees of the contact search)"
                        libnanoflann-dev)
 endif()

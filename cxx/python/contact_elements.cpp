@@ -8,7 +8,8 @@
 namespace hypercontact::python {
 
 void declare_contact_elements(py::module_& m) {
-  py::enum_<DofNumbering>(m, "DofNumbering", "How the dof indices of contact elements number the unknowns")
+  py::enum_<DofNumbering>(m, "DofNumbering",
+                          "How the dof indices of contact elements number the unknowns")
       .value("Local", DofNumbering::Local, "process-local (owned + ghost) indices")
       .value("Global", DofNumbering::Global, "global PETSc indices");
 
@@ -20,19 +21,25 @@ void declare_contact_elements(py::module_& m) {
                 "tangent[tangent_offsets[e]:tangent_offsets[e+1]]; dof -1 = constrained.")
       .def_readonly("numbering", &E::numbering)
       .def("__len__", &E::size)
-      .def_property_readonly("point", [](const E& e) { return to_numpy_table(e.point, 1); },
-                             "slave point (node) of each element")
-      .def_property_readonly("row_offsets", [](const E& e) { return to_numpy_table(e.row_offsets, 1); })
-      .def_property_readonly("column_offsets", [](const E& e) { return to_numpy_table(e.column_offsets, 1); })
-      .def_property_readonly("tangent_offsets", [](const E& e) { return to_numpy_table(e.tangent_offsets, 1); })
+      .def_property_readonly(
+          "point", [](const E& e) { return to_numpy_table(e.point, 1); },
+          "slave point (node) of each element")
+      .def_property_readonly("row_offsets",
+                             [](const E& e) { return to_numpy_table(e.row_offsets, 1); })
+      .def_property_readonly("column_offsets",
+                             [](const E& e) { return to_numpy_table(e.column_offsets, 1); })
+      .def_property_readonly("tangent_offsets",
+                             [](const E& e) { return to_numpy_table(e.tangent_offsets, 1); })
       .def_property_readonly("row_dofs", [](const E& e) { return to_numpy_table(e.row_dofs, 1); })
-      .def_property_readonly("column_dofs", [](const E& e) { return to_numpy_table(e.column_dofs, 1); })
+      .def_property_readonly("column_dofs",
+                             [](const E& e) { return to_numpy_table(e.column_dofs, 1); })
       .def_property_readonly("residual", [](const E& e) { return to_numpy_table(e.residual, 1); })
       .def_property_readonly("tangent", [](const E& e) { return to_numpy_table(e.tangent, 1); })
       .def(
           "element_tangent",
           [](const E& e, std::size_t k) {
-            if (k >= e.size()) throw py::index_error("element " + std::to_string(k) + " out of range");
+            if (k >= e.size())
+              throw py::index_error("element " + std::to_string(k) + " out of range");
             return RowMajorMatrix(e.element_tangent(k));
           },
           py::arg("e"), "K_e as a (rows, columns) array");

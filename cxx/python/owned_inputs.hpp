@@ -25,14 +25,14 @@ struct OwnedRigidContactInput {
     check_shape(area, "area", {x.shape(0)});
     check_shape(dofs, "dofs", {x.shape(0), 3});
     check_shape(multipliers, "multipliers", {any});
-    return {obstacle, as_span(x), as_span(area), as_span(dofs), eps_n, as_span(multipliers),
-            smoothing};
+    return {obstacle, as_span(x),           as_span(area), as_span(dofs),
+            eps_n,    as_span(multipliers), smoothing};
   }
 };
 
 /// SurfaceContactInput: x (nn, 3); point_nodes, point_weights (np, 4); point_area (np,);
-/// facets, edge_neighbour (nf, 4); offsets (np + 1,), candidates; dofs (nn, 3) int32;
-/// multipliers (np,) or (0,).
+/// facets, edge_neighbour (nf, k), k = 3 (triangles) or 4 (quadrilaterals); offsets (np + 1,),
+/// candidates; dofs (nn, 3) int32; multipliers (np,) or (0,).
 struct OwnedSurfaceContactInput {
   RealArray x;
   IndexArray point_nodes;
@@ -48,14 +48,27 @@ struct OwnedSurfaceContactInput {
     check_shape(point_area, "point_area", {any});
     check_shape(point_nodes, "point_nodes", {point_area.shape(0), 4});
     check_shape(point_weights, "point_weights", {point_area.shape(0), 4});
-    check_shape(facets, "facets", {any, 4});
-    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), 4});
+    check_shape(facets, "facets", {any, any});
+    const auto k = static_cast<int>(facets.shape(1));
+    if (k != 3 && k != 4)
+      throw py::value_error("facets: expected shape (*, 3) or (*, 4), got " +
+                            shape_string({facets.shape(0), facets.shape(1)}));
+    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), k});
     check_shape(offsets, "offsets", {point_area.shape(0) + 1});
     check_shape(candidates, "candidates", {any});
     check_shape(dofs, "dofs", {x.shape(0), 3});
-    return {as_span(x),       as_span(point_nodes), as_span(point_weights), as_span(point_area),
-            as_span(facets),  as_span(edge_neighbour), as_span(offsets),    as_span(candidates),
-            as_span(dofs),    eps_n,                as_span(multipliers),   smoothing};
+    return {as_span(x),
+            as_span(point_nodes),
+            as_span(point_weights),
+            as_span(point_area),
+            {as_span(facets), k},
+            as_span(edge_neighbour),
+            as_span(offsets),
+            as_span(candidates),
+            as_span(dofs),
+            eps_n,
+            as_span(multipliers),
+            smoothing};
   }
 };
 

@@ -30,17 +30,18 @@ struct OwnedRigidFrictionInput {
 
 void declare_rigid_contact_friction(py::module_& m) {
   using In = OwnedRigidFrictionInput;
-  py::class_<In>(m, "RigidFrictionInput",
-                 "The normal contact (a RigidContactInput) plus the history of the last converged\n"
-                 "step: xi_old (n, 3) positions carried with the obstacle, t_old (n, 3) tractions;\n"
-                 "eps_t; mu; with_normal: elements hold normal + friction (True) or the friction\n"
-                 "part alone (False).")
+  py::class_<In>(
+      m, "RigidFrictionInput",
+      "The normal contact (a RigidContactInput) plus the history of the last converged\n"
+      "step: xi_old (n, 3) positions carried with the obstacle, t_old (n, 3) tractions;\n"
+      "eps_t; mu; with_normal: elements hold normal + friction (True) or the friction\n"
+      "part alone (False).")
       .def(py::init([](const OwnedRigidContactInput& contact, RealArray xi_old, RealArray t_old,
                        double eps_t, double mu, bool with_normal) {
              return In{contact, xi_old, t_old, eps_t, mu, with_normal};
            }),
-           py::kw_only(), py::arg("contact"), py::arg("xi_old"), py::arg("t_old"),
-           py::arg("eps_t"), py::arg("mu"), py::arg("with_normal") = true)
+           py::kw_only(), py::arg("contact"), py::arg("xi_old"), py::arg("t_old"), py::arg("eps_t"),
+           py::arg("mu"), py::arg("with_normal") = true)
       .def_readwrite("contact", &In::contact)
       .def_readwrite("xi_old", &In::xi_old)
       .def_readwrite("t_old", &In::t_old)
@@ -58,8 +59,8 @@ void declare_rigid_contact_friction(py::module_& m) {
       .def_property_readonly("slip_increment",
                              [](const E& e) { return to_numpy_table(e.slip_increment, 3); })
       .def_property_readonly("dissipation", [](const E& e) { return to_numpy(e.dissipation); })
-      .def_property_readonly("state", [](const E& e) { return to_numpy_table(e.state, 1); },
-                             "0 open, 1 stick, 2 slip")
+      .def_property_readonly(
+          "state", [](const E& e) { return to_numpy_table(e.state, 1); }, "0 open, 1 stick, 2 slip")
       .def_readonly("normal_force", &E::force, "normal force of the obstacle on the body (3,)")
       .def_readonly("friction_force", &E::friction_force,
                     "tangential force of the obstacle on the body (3,)")

@@ -14,15 +14,16 @@ void declare_surface_contact(py::module_& m) {
   py::class_<In>(m, "SurfaceContactInput",
                  "A slave surface against a master surface: x (nn, 3) current coordinates of the\n"
                  "contact nodes; point_nodes, point_weights (np, 4) (-1 = unused); point_area\n"
-                 "(np,); facets, edge_neighbour (nf, 4); offsets (np + 1,), candidates: the broad\n"
-                 "phase's CSR; dofs (nn, 3) int32 global, -1 = constrained; eps_n; multipliers\n"
-                 "(np,) augmented-Lagrangian pressures >= 0, or empty; smoothing >= 0.")
+                 "(np,); facets, edge_neighbour (nf, 3) triangles or (nf, 4) quadrilaterals; offsets\n"
+                 "(np + 1,), candidates: the broad phase's CSR; dofs (nn, 3) int32 global, -1 =\n"
+                 "constrained; eps_n; multipliers (np,) augmented-Lagrangian pressures >= 0, or empty;\n"
+                 "smoothing >= 0.")
       .def(py::init([](RealArray x, IndexArray point_nodes, RealArray point_weights,
                        RealArray point_area, IndexArray facets, IndexArray edge_neighbour,
                        IndexArray offsets, IndexArray candidates, IndexArray dofs, double eps_n,
                        RealArray multipliers, double smoothing) {
-             return In{x,          point_nodes, point_weights, point_area, facets, edge_neighbour,
-                       offsets,    candidates,  dofs,          eps_n,      multipliers, smoothing};
+             return In{x,       point_nodes, point_weights, point_area, facets,      edge_neighbour,
+                       offsets, candidates,  dofs,          eps_n,      multipliers, smoothing};
            }),
            py::kw_only(), py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"),
            py::arg("point_area"), py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"),
@@ -54,8 +55,8 @@ void declare_surface_contact(py::module_& m) {
                     "force of the master on the slave body, -sum of the slave residuals (3,)")
       .def_readonly("num_closed", &S::num_closed);
 
-  py::class_<SurfaceContactEvaluation, S>(m, "SurfaceContactEvaluation",
-                                          "SurfaceContactState plus the element of every closed point")
+  py::class_<SurfaceContactEvaluation, S>(
+      m, "SurfaceContactEvaluation", "SurfaceContactState plus the element of every closed point")
       .def_readonly("elements", &SurfaceContactEvaluation::elements,
                     "ContactElements: rows = columns = dofs of [slave nodes, facet], global");
 

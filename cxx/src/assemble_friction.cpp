@@ -13,7 +13,11 @@ RigidFrictionEvaluation friction_part(const Obstacle& obstacle, std::span<const 
                                       std::span<const std::int32_t> dofs,
                                       std::span<const double> multipliers, double smoothing) {
   return evaluate_rigid_friction({{obstacle, x, area, dofs, eps_n, multipliers, smoothing},
-                                  xi_old, t_old, eps_t, mu, /*with_normal=*/false});
+                                  xi_old,
+                                  t_old,
+                                  eps_t,
+                                  mu,
+                                  /*with_normal=*/false});
 }
 }  // namespace
 
@@ -22,8 +26,8 @@ RigidFrictionState assemble_rigid_friction_residual(
     double eps_t, double mu, std::span<const double> xi_old, std::span<const double> t_old,
     std::span<const std::int32_t> dofs, std::span<double> b, std::span<const double> multipliers,
     double smoothing) {
-  RigidFrictionEvaluation e =
-      friction_part(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers, smoothing);
+  RigidFrictionEvaluation e = friction_part(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old,
+                                            dofs, multipliers, smoothing);
   for (std::int32_t dof : dofs)  // every node's, open ones included
     if (dof >= static_cast<std::int64_t>(b.size()))
       throw std::out_of_range("assemble_rigid_friction_residual: dof " + std::to_string(dof) +
@@ -39,9 +43,9 @@ void assemble_rigid_friction_tangent(const Obstacle& obstacle, std::span<const d
                                      std::span<const double> t_old,
                                      std::span<const std::int32_t> dofs, Mat A,
                                      std::span<const double> multipliers, double smoothing) {
-  add_tangent(
-      friction_part(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers, smoothing),
-      A);
+  add_tangent(friction_part(obstacle, x, area, eps_n, eps_t, mu, xi_old, t_old, dofs, multipliers,
+                            smoothing),
+              A);
 }
 
 }  // namespace hypercontact

@@ -37,7 +37,8 @@ void add_residual(const ContactElements& elements, std::span<double> b_local) {
                               " outside the local residual array of size " +
                               std::to_string(b_local.size()));
   for (std::size_t k = 0; k < elements.row_dofs.size(); ++k)
-    if (const std::int32_t dof = elements.row_dofs[k]; dof >= 0) b_local[dof] += elements.residual[k];
+    if (const std::int32_t dof = elements.row_dofs[k]; dof >= 0)
+      b_local[dof] += elements.residual[k];
 }
 
 void add_residual(const ContactElements& elements, Vec b) {
@@ -53,8 +54,9 @@ void add_residual(const ContactElements& elements, Vec b) {
     const PetscScalar* values = elements.element_residual(e).data();
     const PetscErrorCode err = local ? VecSetValuesLocal(b, n, idx, values, ADD_VALUES)
                                      : VecSetValues(b, n, idx, values, ADD_VALUES);
-    if (err) petsc_failed("add_residual", local ? "VecSetValuesLocal" : "VecSetValues", err,
-                          elements.point[e]);
+    if (err)
+      petsc_failed("add_residual", local ? "VecSetValuesLocal" : "VecSetValues", err,
+                   elements.point[e]);
   }
 }
 
@@ -63,14 +65,16 @@ void add_tangent(const ContactElements& elements, Mat A) {
   std::vector<PetscInt> row_buffer, column_buffer;
   for (std::size_t e = 0; e < elements.size(); ++e) {
     const std::span<const std::int32_t> rows = elements.rows(e), columns = elements.columns(e);
-    const PetscInt m = static_cast<PetscInt>(rows.size()), n = static_cast<PetscInt>(columns.size());
+    const PetscInt m = static_cast<PetscInt>(rows.size()),
+                   n = static_cast<PetscInt>(columns.size());
     const PetscInt* r = petsc_indices(rows, row_buffer);
     const PetscInt* c = petsc_indices(columns, column_buffer);
     const PetscScalar* values = elements.element_tangent(e).data();
     const PetscErrorCode err = local ? MatSetValuesLocal(A, m, r, n, c, values, ADD_VALUES)
                                      : MatSetValues(A, m, r, n, c, values, ADD_VALUES);
-    if (err) petsc_failed("add_tangent", local ? "MatSetValuesLocal" : "MatSetValues", err,
-                          elements.point[e], " (is the coupling in the matrix pattern?)");
+    if (err)
+      petsc_failed("add_tangent", local ? "MatSetValuesLocal" : "MatSetValues", err,
+                   elements.point[e], " (is the coupling in the matrix pattern?)");
   }
 }
 

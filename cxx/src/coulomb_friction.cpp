@@ -6,26 +6,30 @@
 namespace hypercontact {
 
 namespace {
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("coulomb_friction: " + what);
+/// Throws std::invalid_argument unless ok; the message is built only then.
+template <typename Message>
+void require(bool ok, Message what) {
+  if (!ok) throw std::invalid_argument("coulomb_friction: " + std::string(what()));
 }
 
 void check_parameters(double area, double eps_n, double eps_t, double mu) {
   require(std::isfinite(area) && area >= 0,
-          "area must be finite and >= 0, got " + std::to_string(area));
+          [&] { return "area must be finite and >= 0, got " + std::to_string(area); });
   require(std::isfinite(eps_n) && eps_n > 0,
-          "eps_n must be finite and > 0, got " + std::to_string(eps_n));
+          [&] { return "eps_n must be finite and > 0, got " + std::to_string(eps_n); });
   require(std::isfinite(eps_t) && eps_t > 0,
-          "eps_t must be finite and > 0, got " + std::to_string(eps_t));
-  require(std::isfinite(mu) && mu >= 0, "mu must be finite and >= 0, got " + std::to_string(mu));
+          [&] { return "eps_t must be finite and > 0, got " + std::to_string(eps_t); });
+  require(std::isfinite(mu) && mu >= 0,
+          [&] { return "mu must be finite and >= 0, got " + std::to_string(mu); });
 }
 }  // namespace
 
 ReturnMapResult return_map(const Eigen::Vector3d& t_trial, double p_n, double mu) {
-  require(t_trial.allFinite(), "t_trial must be finite");
+  require(t_trial.allFinite(), [&] { return "t_trial must be finite"; });
   require(std::isfinite(p_n) && p_n >= 0,
-          "p_n must be finite and >= 0, got " + std::to_string(p_n));
-  require(std::isfinite(mu) && mu >= 0, "mu must be finite and >= 0, got " + std::to_string(mu));
+          [&] { return "p_n must be finite and >= 0, got " + std::to_string(p_n); });
+  require(std::isfinite(mu) && mu >= 0,
+          [&] { return "mu must be finite and >= 0, got " + std::to_string(mu); });
   if (mu == 0) return {Eigen::Vector3d::Zero(), StickSlip::Slip};
   const double norm = t_trial.norm();
   if (norm - mu * p_n <= 0) return {t_trial, StickSlip::Stick};
@@ -38,11 +42,11 @@ FrictionResult coulomb_friction(const ObstacleProjection& p, const Eigen::Vector
                                 double smoothing) {
   check_parameters(area, eps_n, eps_t, mu);
   require(std::isfinite(smoothing) && smoothing >= 0,
-          "smoothing must be finite and >= 0, got " + std::to_string(smoothing));
+          [&] { return "smoothing must be finite and >= 0, got " + std::to_string(smoothing); });
   require(std::isfinite(p.gap) && p.normal.allFinite() && p.dnormal_dx.allFinite(),
-          "projection must be finite");
+          [&] { return "projection must be finite"; });
   require(x.allFinite() && xi_old.allFinite() && t_old.allFinite(),
-          "x, xi_old and t_old must be finite");
+          [&] { return "x, xi_old and t_old must be finite"; });
   if (!penetration_active(p.gap, smoothing))
     return {Eigen::Vector3d::Zero(),
             Eigen::Matrix3d::Zero(),

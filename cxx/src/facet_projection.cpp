@@ -11,10 +11,6 @@ namespace hypercontact {
 
 namespace {
 
-constexpr std::array<std::array<double, 2>, 4> quad_vertices{
-    {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}};
-constexpr std::array<std::array<double, 2>, 3> tri_vertices{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}};
-
 /// Relative size below which an area or a corner counts as zero.
 constexpr double degenerate_tol = 1e-12;
 /// How far outside the reference facet a Face point may lie (rounding of a minimiser on an edge).
@@ -35,28 +31,29 @@ std::string format_xi(const Eigen::Vector2d& xi) {
 }
 
 /// Longest edge of the facet.
-double longest_edge(const NodeCoordinates& x) {
-  const int n = static_cast<int>(x.cols());
+template <int NM>
+double longest_edge(const FacetNodes<NM>& x) {
   double length = 0;
-  for (int k = 0; k < n; ++k) length = std::max(length, (x.col((k + 1) % n) - x.col(k)).norm());
+  for (int k = 0; k < NM; ++k) length = std::max(length, (x.col((k + 1) % NM) - x.col(k)).norm());
   return length;
 }
 
 /// Throws unless x is a finite, non-degenerate facet; returns its longest edge L > 0.
-double check_facet(const NodeCoordinates& x, const char* who) {
-  check_num_nodes(static_cast<int>(x.cols()));
+template <int NM>
+double check_facet(const FacetNodes<NM>& x, const char* who) {
   if (!x.allFinite())
     throw std::invalid_argument(std::string(who) + ": master facet coordinates must be finite");
-  const int n = static_cast<int>(x.cols());
-  const double L = longest_edge(x);
-  const Eigen::Vector3d area = n == 4
-                                   ? 0.5 * (x.col(2) - x.col(0)).cross(x.col(3) - x.col(1)).eval()
-                                   : 0.5 * (x.col(1) - x.col(0)).cross(x.col(2) - x.col(0)).eval();
+  const double L = longest_edge<NM>(x);
+  Eigen::Vector3d area;
+  if constexpr (NM == 4)
+    area = 0.5 * (x.col(2) - x.col(0)).cross(x.col(3) - x.col(1)).eval();
+  else
+    area = 0.5 * (x.col(1) - x.col(0)).cross(x.col(2) - x.col(0)).eval();
   if (!(area.norm() > degenerate_tol * L * L))
     throw std::invalid_argument(std::string(who) +
                                 ": degenerate master facet: zero area (longest edge " +
                                 std::to_string(L) + ")");
-  if (n == 4)
+  if constexpr (NM == 4)
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3d out = x.col((k + 1) % 4) - x.col(k);
       const Eigen::Vector3d in = x.col((k + 3) % 4) - x.col(k);
@@ -69,10 +66,10 @@ double check_facet(const NodeCoordinates& x, const char* who) {
 }
 
 /// a_1 × a_2 at ξ, unit; throws if it vanishes (folded facet).
-Eigen::Vector3d unit_normal(const NodeCoordinates& x, const Eigen::Vector2d& xi, double L,
+template <int NM>
+Eigen::Vector3d unit_normal(const FacetNodes<NM>& x, const Eigen::Vector2d& xi, double L,
                             const char* who) {
-  const Eigen::Matrix<double, Eigen::Dynamic, 2> dN =
-      facet_shape_derivatives(static_cast<int>(x.cols()), xi);
+  const Eigen::Matrix<double, NM, 2> dN = facet_shape_derivatives<NM>(xi);
   const Eigen::Vector3d c = (x * dN.col(0)).cross(x * dN.col(1));
   const double norm = c.norm();
   if (!(norm > degenerate_tol * L * L))
@@ -103,17 +100,18 @@ struct NewtonOutcome {
 };
 
 /// Safeguarded Newton for min_ξ ½|x_s − x_M(ξ)|² from xi0 (coordinates relative to the centroid).
-NewtonOutcome newton(const NodeCoordinates& x, const Eigen::Vector3d& xs,
-                     const Eigen::Vector2d& xi0, double xi_tol, double L) {
-  const int n = static_cast<int>(x.cols());
-  const Eigen::Vector3d x12 = x * facet_shape_mixed_derivatives(n);
+template <int NM>
+NewtonOutcome newton(const FacetNodes<NM>& x, const Eigen::Vector3d& xs, const Eigen::Vector2d& xi0,
+                     double xi_tol, double L) {
+  constexpr int n = NM;
+  const Eigen::Vector3d x12 = x * facet_shape_mixed_derivatives<NM>();
   const auto objective = [&](const Eigen::Vector2d& xi) {
-    return 0.5 * (xs - x * facet_shape_functions(n, xi)).squaredNorm();
+    return 0.5 * (xs - x * facet_shape_functions<NM>(xi)).squaredNorm();
   };
   Eigen::Vector2d xi = xi0;
   for (int it = 1; it <= max_newton_iterations; ++it) {
-    const Eigen::Vector3d r = xs - x * facet_shape_functions(n, xi);
-    const Eigen::Matrix<double, 3, 2> a = x * facet_shape_derivatives(n, xi);
+    const Eigen::Vector3d r = xs - x * facet_shape_functions<NM>(xi);
+    const Eigen::Matrix<double, 3, 2> a = x * facet_shape_derivatives<NM>(xi);
     const Eigen::Vector2d grad = -a.transpose() * r;
     Eigen::Matrix2d H = a.transpose() * a;
     H(0, 1) -= r.dot(x12);
@@ -161,79 +159,64 @@ int rank(Feature f) { return f == Feature::Face ? 0 : f == Feature::Edge ? 1 : 2
 
 Eigen::VectorXd facet_shape_functions(int num_nodes, const Eigen::Vector2d& xi) {
   check_num_nodes(num_nodes);
-  Eigen::VectorXd N(num_nodes);
-  if (num_nodes == 4) {
-    for (int a = 0; a < 4; ++a)
-      N[a] = 0.25 * (1 + quad_vertices[a][0] * xi[0]) * (1 + quad_vertices[a][1] * xi[1]);
-  } else {
-    N << 1 - xi[0] - xi[1], xi[0], xi[1];
-  }
-  return N;
+  if (num_nodes == 4) return facet_shape_functions<4>(xi);
+  return facet_shape_functions<3>(xi);
 }
 
 Eigen::Matrix<double, Eigen::Dynamic, 2> facet_shape_derivatives(int num_nodes,
                                                                  const Eigen::Vector2d& xi) {
   check_num_nodes(num_nodes);
-  Eigen::Matrix<double, Eigen::Dynamic, 2> dN(num_nodes, 2);
-  if (num_nodes == 4) {
-    for (int a = 0; a < 4; ++a) {
-      const double s1 = quad_vertices[a][0], s2 = quad_vertices[a][1];
-      dN(a, 0) = 0.25 * s1 * (1 + s2 * xi[1]);
-      dN(a, 1) = 0.25 * s2 * (1 + s1 * xi[0]);
-    }
-  } else {
-    dN << -1, -1, 1, 0, 0, 1;
-  }
-  return dN;
+  if (num_nodes == 4) return facet_shape_derivatives<4>(xi);
+  return facet_shape_derivatives<3>(xi);
 }
 
 Eigen::VectorXd facet_shape_mixed_derivatives(int num_nodes) {
   check_num_nodes(num_nodes);
-  Eigen::VectorXd d2N = Eigen::VectorXd::Zero(num_nodes);
-  if (num_nodes == 4)
-    for (int a = 0; a < 4; ++a) d2N[a] = 0.25 * quad_vertices[a][0] * quad_vertices[a][1];
-  return d2N;
+  if (num_nodes == 4) return facet_shape_mixed_derivatives<4>();
+  return facet_shape_mixed_derivatives<3>();
 }
 
 Eigen::Vector2d facet_vertex_xi(int num_nodes, int k) {
   check_num_nodes(num_nodes);
-  const int j = ((k % num_nodes) + num_nodes) % num_nodes;
-  return num_nodes == 4 ? Eigen::Vector2d(quad_vertices[j][0], quad_vertices[j][1])
-                        : Eigen::Vector2d(tri_vertices[j][0], tri_vertices[j][1]);
+  return num_nodes == 4 ? facet_vertex_xi<4>(k) : facet_vertex_xi<3>(k);
 }
 
-Eigen::Vector3d facet_normal(const NodeCoordinates& x, const Eigen::Vector2d& xi) {
-  const double L = check_facet(x, "facet_normal");
+template <int NM>
+requires FacetNodeCount<NM> Eigen::Vector3d facet_normal(const FacetNodes<NM>& x,
+                                                         const Eigen::Vector2d& xi) {
+  const double L = check_facet<NM>(x, "facet_normal");
   if (!xi.allFinite()) throw std::invalid_argument("facet_normal: xi must be finite");
-  return unit_normal(x, xi, L, "facet_normal");
+  return unit_normal<NM>(x, xi, L, "facet_normal");
 }
 
-FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vector3d& x_s) {
+template <int NM>
+requires FacetNodeCount<NM> FacetProjection project_to_facet(const FacetNodes<NM>& master,
+                                                             const Eigen::Vector3d& x_s) {
   constexpr const char* who = "project_to_facet";
-  const double L = check_facet(master, who);
+  const double L = check_facet<NM>(master, who);
   if (!x_s.allFinite()) throw std::invalid_argument("project_to_facet: x_s must be finite");
-  const int n = static_cast<int>(master.cols());
+  constexpr int n = NM;
 
   // Work relative to the centroid: rounding then scales with the facet, not with |x|.
   const Eigen::Vector3d centroid = master.rowwise().mean();
-  const NodeCoordinates x = master.colwise() - centroid;
+  const FacetNodes<NM> x = master.colwise() - centroid;
   const Eigen::Vector3d xs = x_s - centroid;
   const double xi_tol = 1e-12 * std::max(1.0, xs.norm() / L);
 
   // Boundary: exact closest point of each straight edge.
-  Candidate best{facet_vertex_xi(n, 0), Feature::Vertex, 0, (xs - x.col(0)).norm()};
+  Candidate best{facet_vertex_xi<NM>(0), Feature::Vertex, 0, (xs - x.col(0)).norm()};
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector3d p = x.col(k), e = x.col((k + 1) % n) - p;
     const double t = std::clamp((xs - p).dot(e) / e.squaredNorm(), 0.0, 1.0);
     Candidate c;
     if (t == 0.0) {
-      c = {facet_vertex_xi(n, k), Feature::Vertex, k, (xs - p).norm()};
+      c = {facet_vertex_xi<NM>(k), Feature::Vertex, k, (xs - p).norm()};
     } else if (t == 1.0) {
-      c = {facet_vertex_xi(n, k + 1), Feature::Vertex, (k + 1) % n, (xs - p - e).norm()};
+      c = {facet_vertex_xi<NM>(k + 1), Feature::Vertex, (k + 1) % n, (xs - p - e).norm()};
     } else {
       // ξ_k + t (ξ_{k+1} − ξ_k) keeps the coordinate constant along the edge exact.
-      const Eigen::Vector2d xi_k = facet_vertex_xi(n, k);
-      c = {xi_k + t * (facet_vertex_xi(n, k + 1) - xi_k), Feature::Edge, k,
+      const Eigen::Vector2d xi_k = facet_vertex_xi<NM>(k);
+      c = {xi_k + t * (facet_vertex_xi<NM>(k + 1) - xi_k), Feature::Edge, k,
            (xs - p - t * e).norm()};
     }
     if (c.distance < best.distance ||
@@ -252,11 +235,11 @@ FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vec
   bool have_face = false;
   Candidate face{};
   for (int s = 0; s < num_starts; ++s) {
-    const NewtonOutcome o = newton(x, xs, starts[s], xi_tol, L);
+    const NewtonOutcome o = newton<NM>(x, xs, starts[s], xi_tol, L);
     iterations += o.iterations;
     converged = converged && o.concluded;
     if (!o.stationary || !inside(n, o.xi, inside_tol)) continue;
-    const double distance = (xs - x * facet_shape_functions(n, o.xi)).norm();
+    const double distance = (xs - x * facet_shape_functions<NM>(o.xi)).norm();
     if (!have_face || distance < face.distance) {
       face = {o.xi, Feature::Face, -1, distance};
       have_face = true;
@@ -264,15 +247,32 @@ FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vec
   }
   if (have_face && face.distance <= best.distance + 1e-12 * L) best = face;
 
-  const Eigen::Vector3d point = master * facet_shape_functions(n, best.xi);
+  const Eigen::Vector3d point = master * facet_shape_functions<NM>(best.xi);
   return {best.xi,
           best.feature,
           best.local_index,
           point,
           (x_s - point).norm(),
-          unit_normal(x, best.xi, L, who),
+          unit_normal<NM>(x, best.xi, L, who),
           iterations,
           converged};
+}
+
+template Eigen::Vector3d facet_normal<3>(const FacetNodes<3>&, const Eigen::Vector2d&);
+template Eigen::Vector3d facet_normal<4>(const FacetNodes<4>&, const Eigen::Vector2d&);
+template FacetProjection project_to_facet<3>(const FacetNodes<3>&, const Eigen::Vector3d&);
+template FacetProjection project_to_facet<4>(const FacetNodes<4>&, const Eigen::Vector3d&);
+
+Eigen::Vector3d facet_normal(const NodeCoordinates& x, const Eigen::Vector2d& xi) {
+  check_num_nodes(static_cast<int>(x.cols()));
+  if (x.cols() == 4) return facet_normal<4>(FacetNodes<4>(x), xi);
+  return facet_normal<3>(FacetNodes<3>(x), xi);
+}
+
+FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vector3d& x_s) {
+  check_num_nodes(static_cast<int>(master.cols()));
+  if (master.cols() == 4) return project_to_facet<4>(FacetNodes<4>(master), x_s);
+  return project_to_facet<3>(FacetNodes<3>(master), x_s);
 }
 
 }  // namespace hypercontact

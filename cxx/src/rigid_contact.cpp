@@ -30,8 +30,8 @@ void check_rigid_input(const RigidContactInput& in, const char* who) {
 Eigen::Vector3d slave_node(std::span<const double> x, std::size_t i, const char* who) {
   const Eigen::Vector3d xi(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
   if (!xi.allFinite())
-    throw std::runtime_error(std::string(who) + ": coordinates of slave node " +
-                             std::to_string(i) + " are not finite");
+    throw std::runtime_error(std::string(who) + ": coordinates of slave node " + std::to_string(i) +
+                             " are not finite");
   return xi;
 }
 
@@ -45,8 +45,8 @@ double multiplier(std::span<const double> multipliers, std::size_t i, const char
 
 }  // namespace detail
 
-RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x,
-                                    double area, double eps_n, double lambda, double smoothing) {
+RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x, double area,
+                                    double eps_n, double lambda, double smoothing) {
   const ObstacleProjection projection = project(obstacle, x);
   return {projection,
           normal_penalty(augmented_projection(projection, lambda, eps_n), area, eps_n, smoothing)};

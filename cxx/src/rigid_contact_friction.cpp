@@ -8,7 +8,8 @@ namespace {
 
 void check_history(const RigidFrictionInput& in, const char* who) {
   const std::size_t n = in.contact.area.size();
-  for (auto [name, size] : {std::pair{"xi_old", in.xi_old.size()}, std::pair{"t_old", in.t_old.size()}})
+  for (auto [name, size] :
+       {std::pair{"xi_old", in.xi_old.size()}, std::pair{"t_old", in.t_old.size()}})
     if (size != 3 * n)
       throw std::invalid_argument(std::string(who) + ": " + name + " has " + std::to_string(size) +
                                   " entries, expected 3 × " + std::to_string(n));
@@ -41,12 +42,12 @@ RigidFrictionEvaluation evaluate_rigid_friction(const RigidFrictionInput& in) {
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d xi = detail::slave_node(c.x, i, who);
     const double lambda = detail::multiplier(c.multipliers, i, who);
-    const RigidContactNode node = rigid_contact_node(c.obstacle, xi, c.area[i], c.eps_n, lambda,
-                                                     c.smoothing);
-    const FrictionResult f = coulomb_friction(
-        augmented_projection(node.projection, lambda, c.eps_n), xi,
-        Eigen::Vector3d(&in.xi_old[3 * i]), Eigen::Vector3d(&in.t_old[3 * i]), c.area[i], c.eps_n,
-        in.eps_t, in.mu, c.smoothing);
+    const RigidContactNode node =
+        rigid_contact_node(c.obstacle, xi, c.area[i], c.eps_n, lambda, c.smoothing);
+    const FrictionResult f =
+        coulomb_friction(augmented_projection(node.projection, lambda, c.eps_n), xi,
+                         Eigen::Vector3d(&in.xi_old[3 * i]), Eigen::Vector3d(&in.t_old[3 * i]),
+                         c.area[i], c.eps_n, in.eps_t, in.mu, c.smoothing);
     const NodalContact& normal = node.contact;
     out.gap.push_back(node.projection.gap);
     out.pressure.push_back(normal.pressure);

@@ -1,31 +1,43 @@
-#include <hypercontact/node_to_surface.hpp>
+#include <algorithm>
 #include <hypercontact/surface_contact.hpp>
 
-#include "surface_pairing.hpp"
+#include "surface_point.hpp"
 
 namespace hypercontact {
 
-SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in) {
-  detail::check_surface_input(in, "evaluate_surface_contact");
-  const std::size_t np = in.point_area.size();
-  const std::vector<char> boundary_node = detail::master_boundary_nodes(in);
-  SurfaceContactEvaluation out;
-  detail::init_state(out, np);
-  out.elements.numbering = DofNumbering::Global;
-  for (std::size_t p = 0; p < np; ++p) {
-    detail::SlavePointPairing pr;
-    NodeCoordinates master;
-    SurfaceContact e;
-    if (!detail::closed_normal_element(in, boundary_node, p, out, pr, master, e)) continue;
-    const int ns = static_cast<int>(pr.nodes.size());
-    const int n = 3 * (ns + 4);
+namespace {
+
+/// Every slave point against facets of NM nodes.
+template <int NM>
+void evaluate_points(const SurfaceContactInput& in, const NarrowPhase& narrow,
+                     SurfaceContactEvaluation& out) {
+  detail::ClosedPoint<NM> point;
+  for (std::size_t p = 0; p < in.point_area.size(); ++p) {
+    if (!detail::closed_normal_element<NM>(in, narrow, p, out, point)) continue;
+    const SurfaceContact& e = point.element;
+    const int ns = point.slave.num_nodes;
+    const int n = 3 * (ns + NM);
     ContactElements::Slot slot = out.elements.append(static_cast<std::int32_t>(p), n, n);
-    detail::element_dofs(in, pr.nodes, pr.facet, slot.rows);
+    detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
     std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
     slot.residual = e.residual;
     slot.tangent = e.tangent;
     for (int i = 0; i < ns; ++i) out.force -= e.residual.segment<3>(3 * i);
   }
+}
+
+}  // namespace
+
+SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in) {
+  detail::check_surface_input(in, "evaluate_surface_contact");
+  const NarrowPhase narrow({in.x, in.facets, in.edge_neighbour});
+  SurfaceContactEvaluation out;
+  detail::init_state(out, in.point_area.size());
+  out.elements.numbering = DofNumbering::Global;
+  if (in.facets.nodes_per_facet == 3)
+    evaluate_points<3>(in, narrow, out);
+  else
+    evaluate_points<4>(in, narrow, out);
   return out;
 }
 

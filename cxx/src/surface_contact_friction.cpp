@@ -1,10 +1,10 @@
-#include <hypercontact/node_to_surface.hpp>
+#include <algorithm>
 #include <hypercontact/surface_contact_friction.hpp>
 #include <hypercontact/surface_friction.hpp>
 #include <stdexcept>
 #include <string>
 
-#include "surface_pairing.hpp"
+#include "surface_point.hpp"
 
 namespace hypercontact {
 
@@ -14,7 +14,7 @@ constexpr const char* who = "evaluate_surface_friction";
 
 void check_history(const SurfaceFrictionInput& fin) {
   const std::size_t np = fin.contact.point_area.size();
-  const std::int32_t nf = static_cast<std::int32_t>(fin.contact.facets.size() / 4);
+  const auto nf = static_cast<std::int32_t>(fin.contact.facets.size());
   auto fail = [](const std::string& what) {
     throw std::invalid_argument(std::string(who) + ": " + what);
   };
@@ -38,50 +38,52 @@ SurfaceFrictionEvaluation empty_evaluation(std::size_t np) {
   return s;
 }
 
-/// The friction of paired point p against its current facet, with its history (or none).
+/// The friction of closed point p against its current facet, with its history on facet `old`
+/// (or none: the current point, t_old = 0).
+template <int NM>
 SurfaceFriction point_friction(const SurfaceFrictionInput& fin, std::size_t p,
-                               const detail::SlavePointPairing& pr, const NodeCoordinates& master,
-                               std::int32_t old) {
+                               const detail::ClosedPoint<NM>& point, std::int32_t old) {
   const SurfaceContactInput& in = fin.contact;
   const bool history = fin.old_facet[p] >= 0;
-  const Eigen::Vector2d xi_old =
-      history ? Eigen::Vector2d(fin.xi_old[2 * p], fin.xi_old[2 * p + 1]) : pr.projection.xi;
-  const Eigen::Vector3d t_old = history ? Eigen::Vector3d(&fin.t_old[3 * p]) : Eigen::Vector3d::Zero();
-  const NodeCoordinates old_master = gather_facet(old, in.facets, 4, in.x);
-  return surface_friction(pr.slave, pr.weights, master, pr.projection, old_master, xi_old, t_old,
-                          in.point_area[p], in.eps_n, fin.eps_t, fin.mu,
-                          in.multipliers.empty() ? 0.0 : in.multipliers[p], in.smoothing);
+  const Eigen::Vector2d xi_old = history ? Eigen::Vector2d(fin.xi_old[2 * p], fin.xi_old[2 * p + 1])
+                                         : point.pairing.projection.xi;
+  const Eigen::Vector3d t_old =
+      history ? Eigen::Vector3d(&fin.t_old[3 * p]) : Eigen::Vector3d::Zero();
+  const FacetNodes<NM> old_master = gather_facet<NM>(old, in.facets, in.x);
+  return surface_friction<NM, NM>(point.slave.x, point.slave.weights, point.master,
+                                  point.pairing.projection, old_master, xi_old, t_old,
+                                  in.point_area[p], in.eps_n, fin.eps_t, fin.mu,
+                                  in.multipliers.empty() ? 0.0 : in.multipliers[p], in.smoothing);
 }
 
-}  // namespace
+void record_friction(const SurfaceFriction& fr, std::size_t p, SurfaceFrictionEvaluation& s) {
+  for (int k = 0; k < 3; ++k) {
+    s.traction[3 * p + k] = fr.traction[k];
+    s.slip_increment[3 * p + k] = fr.slip_increment[k];
+  }
+  s.dissipation[p] = fr.dissipation;
+  s.stick[p] = static_cast<std::int32_t>(fr.state);
+}
 
-SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& fin) {
+/// Every slave point against facets of NM nodes.
+template <int NM>
+void evaluate_points(const SurfaceFrictionInput& fin, const NarrowPhase& narrow,
+                     SurfaceFrictionEvaluation& s) {
   const SurfaceContactInput& in = fin.contact;
-  detail::check_surface_input(in, who);
-  check_history(fin);
-  const std::size_t np = in.point_area.size();
-  const std::vector<char> boundary_node = detail::master_boundary_nodes(in);
-  SurfaceFrictionEvaluation s = empty_evaluation(np);
-  for (std::size_t p = 0; p < np; ++p) {
-    detail::SlavePointPairing pr;
-    NodeCoordinates master;
-    SurfaceContact e;
-    if (!detail::closed_normal_element(in, boundary_node, p, s, pr, master, e)) continue;
+  detail::ClosedPoint<NM> point;
+  for (std::size_t p = 0; p < in.point_area.size(); ++p) {
+    if (!detail::closed_normal_element<NM>(in, narrow, p, s, point)) continue;
     const bool history = fin.old_facet[p] >= 0;
-    const std::int32_t old = history ? fin.old_facet[p] : pr.facet;
-    const SurfaceFriction fr = point_friction(fin, p, pr, master, old);
-    for (int k = 0; k < 3; ++k) {
-      s.traction[3 * p + k] = fr.traction[k];
-      s.slip_increment[3 * p + k] = fr.slip_increment[k];
-    }
-    s.dissipation[p] = fr.dissipation;
-    s.stick[p] = static_cast<std::int32_t>(fr.state);
+    const std::int32_t old = history ? fin.old_facet[p] : point.pairing.facet;
+    const SurfaceFriction fr = point_friction<NM>(fin, p, point, old);
+    record_friction(fr, p, s);
 
     // Rows: slave nodes + current facet; columns: those + old facet.
-    const int ns = static_cast<int>(pr.nodes.size());
-    const int n = 3 * (ns + 4), m = n + 12;
+    const SurfaceContact& e = point.element;
+    const int ns = point.slave.num_nodes;
+    const int n = 3 * (ns + NM), m = n + 3 * NM;
     ContactElements::Slot slot = s.elements.append(static_cast<std::int32_t>(p), n, m);
-    detail::element_dofs(in, pr.nodes, pr.facet, slot.rows);
+    detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
     std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
     detail::element_dofs(in, {}, old, slot.columns.subspan(n));
     slot.residual = e.residual + fr.residual.head(n);
@@ -92,6 +94,20 @@ SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& 
       s.total_force -= slot.residual.segment<3>(3 * i);
     }
   }
+}
+
+}  // namespace
+
+SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& fin) {
+  const SurfaceContactInput& in = fin.contact;
+  detail::check_surface_input(in, who);
+  check_history(fin);
+  const NarrowPhase narrow({in.x, in.facets, in.edge_neighbour});
+  SurfaceFrictionEvaluation s = empty_evaluation(in.point_area.size());
+  if (in.facets.nodes_per_facet == 3)
+    evaluate_points<3>(fin, narrow, s);
+  else
+    evaluate_points<4>(fin, narrow, s);
   return s;
 }
 

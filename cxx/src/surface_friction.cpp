@@ -1,6 +1,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <hypercontact/surface_friction.hpp>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -12,25 +13,25 @@ namespace {
 
 constexpr const char* who = "surface_friction";
 
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(std::string(who) + ": " + what);
+[[noreturn]] void invalid(const std::string& what) {
+  throw std::invalid_argument(std::string(who) + ": " + what);
 }
 
 void check_parameters(double w, double eps_n, double eps_t, double mu) {
-  require(std::isfinite(w) && w >= 0, "w must be finite and >= 0, got " + std::to_string(w));
-  require(std::isfinite(eps_n) && eps_n > 0,
-          "eps_n must be finite and > 0, got " + std::to_string(eps_n));
-  require(std::isfinite(eps_t) && eps_t > 0,
-          "eps_t must be finite and > 0, got " + std::to_string(eps_t));
-  require(std::isfinite(mu) && mu >= 0, "mu must be finite and >= 0, got " + std::to_string(mu));
+  if (!(std::isfinite(w) && w >= 0)) invalid("w must be finite and >= 0, got " + std::to_string(w));
+  if (!(std::isfinite(eps_n) && eps_n > 0))
+    invalid("eps_n must be finite and > 0, got " + std::to_string(eps_n));
+  if (!(std::isfinite(eps_t) && eps_t > 0))
+    invalid("eps_t must be finite and > 0, got " + std::to_string(eps_t));
+  if (!(std::isfinite(mu) && mu >= 0))
+    invalid("mu must be finite and >= 0, got " + std::to_string(mu));
 }
 
-void check_history(const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
-                   const Eigen::Vector3d& t_old) {
-  require(old_master.cols() == 3 || old_master.cols() == 4,
-          "the old facet has 3 or 4 nodes, got " + std::to_string(old_master.cols()));
-  require(old_master.allFinite() && xi_old.allFinite() && t_old.allFinite(),
-          "old facet coordinates, xi_old and t_old must be finite");
+void check_law(double lambda, double smoothing) {
+  if (!(std::isfinite(smoothing) && smoothing >= 0))
+    invalid("smoothing must be finite and >= 0, got " + std::to_string(smoothing));
+  if (!(std::isfinite(lambda) && lambda >= 0))
+    invalid("the multiplier must be finite and >= 0, got " + std::to_string(lambda));
 }
 
 /// [v]× with [v]× u = v × u.
@@ -40,25 +41,78 @@ Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
   return m;
 }
 
+/// 3 × total and 1 × total blocks of derivatives w.r.t. y = [slave, current facet, old facet].
+using Rows3 = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, max_friction_dofs>;
+using Rows2 = Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, max_friction_dofs>;
+using Row = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, max_friction_dofs>;
+
+/// The return map's state at a closed point (surface_friction's notation).
+struct TrialState {
+  Eigen::Matrix3d P_T;      ///< I − n ⊗ n
+  Eigen::Vector3d v;        ///< t_old + ε_T (x_s − x_old)
+  Eigen::Vector3d t_trial;  ///< P_T v
+  Eigen::Vector3d t;        ///< the returned traction
+  StickSlip state;
+  NormalPressure pressure;
+};
+
+/// dt/dy (3 × total) of the returned traction, and dξ*/dy (2 × total).
+template <int NM>
+Rows3 traction_derivative(const detail::SurfaceKinematics<NM>& k, const Rows2& D,
+                          const SlaveWeights& weights, std::span<const double> N_old,
+                          const TrialState& s, double eps_t, double mu) {
+  const int dofs = k.dofs, total = static_cast<int>(D.cols());
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d& n = k.normal;
+  Rows3 P_full = Rows3::Zero(3, total);
+  P_full.leftCols(dofs) = k.P;
+  const Rows3 dr = P_full - k.a * D;
+  std::array<Rows3, 2> da;
+  for (int alpha = 0; alpha < 2; ++alpha) {
+    da[alpha] = k.x12 * D.row(1 - alpha);  // x_,11 = x_,22 = 0
+    for (int a = 0; a < NM; ++a)
+      da[alpha].template middleCols<3>(3 * (k.ns + a)) += k.dN(a, alpha) * I;
+  }
+  const Rows3 dc = -cross_matrix(k.a.col(1)) * da[0] + cross_matrix(k.a.col(0)) * da[1];
+  const Rows3 dn = (s.P_T / k.c.norm()) * dc;
+  const Row dg = n.transpose() * dr + k.r.transpose() * dn;
+  const Row dp = s.pressure.slope * dg;
+  Rows3 dv = Rows3::Zero(3, total);
+  for (int i = 0; i < k.ns; ++i) dv.template middleCols<3>(3 * i) = eps_t * weights[i] * I;
+  for (std::size_t b = 0; b < N_old.size(); ++b)
+    dv.template middleCols<3>(dofs + 3 * static_cast<int>(b)) = -eps_t * N_old[b] * I;
+  const Rows3 dt_trial = s.P_T * dv - n * (s.v.transpose() * dn) - n.dot(s.v) * dn;
+  switch (s.state) {
+    case StickSlip::Stick:
+      return dt_trial;
+    case StickSlip::Slip: {  // μ > 0 and Φ > 0 : |t_trial| > μ p_N ≥ 0, m is defined
+      const double norm = s.t_trial.norm();
+      const Eigen::Vector3d m = s.t_trial / norm;
+      return mu * m * dp + (mu * s.pressure.value / norm) * (I - m * m.transpose()) * dt_trial;
+    }
+    case StickSlip::Open:
+      break;
+  }
+  throw std::logic_error("surface_friction: return_map never returns Open");
+}
+
 }  // namespace
 
-SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
-                                 const NodeCoordinates& master, const FacetProjection& projection,
-                                 const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
-                                 const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
-                                 double mu, double lambda, double smoothing) {
+template <int NM, int NO>
+requires FacetNodeCount<NM> && FacetNodeCount<NO> SurfaceFriction
+surface_friction(const SlaveNodes& slave, const SlaveWeights& weights, const FacetNodes<NM>& master,
+                 const FacetProjection& projection, const FacetNodes<NO>& old_master,
+                 const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old, double w,
+                 double eps_n, double eps_t, double mu, double lambda, double smoothing) {
   check_parameters(w, eps_n, eps_t, mu);
-  require(std::isfinite(smoothing) && smoothing >= 0,
-          "smoothing must be finite and >= 0, got " + std::to_string(smoothing));
-  require(std::isfinite(lambda) && lambda >= 0,
-          "the multiplier must be finite and >= 0, got " + std::to_string(lambda));
-  check_history(old_master, xi_old, t_old);
-  const detail::SurfaceKinematics k =
-      detail::surface_kinematics(slave, weights, master, projection, who);
-  const int no = static_cast<int>(old_master.cols());
-  const int dofs = k.dofs, total = k.dofs + 3 * no;
-  SurfaceFriction f{Eigen::VectorXd::Zero(total),
-                    Eigen::MatrixXd::Zero(total, total),
+  check_law(lambda, smoothing);
+  if (!(old_master.allFinite() && xi_old.allFinite() && t_old.allFinite()))
+    invalid("old facet coordinates, xi_old and t_old must be finite");
+  const detail::SurfaceKinematics<NM> k =
+      detail::surface_kinematics<NM>(slave, weights, master, projection, who);
+  const int dofs = k.dofs, total = k.dofs + 3 * NO;
+  SurfaceFriction f{FrictionVector::Zero(total),
+                    FrictionMatrix::Zero(total, total),
                     Eigen::Vector3d::Zero(),
                     Eigen::Vector3d::Zero(),
                     0.0,
@@ -69,66 +123,79 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                     projection.xi,
                     projection.feature,
                     projection.local_index};
-  // Augmented (λ_N > 0): p_N = λ_N − ε_N g, open unless p_N > 0; smoothed: p_N = ε_N P(g − λ_N/ε_N).
-  const NormalPressure np = normal_pressure(k.gap, eps_n, lambda, smoothing);
-  if (!np.active) return f;
+  // Augmented (λ_N > 0): p_N = λ_N − ε_N g, open unless p_N > 0; smoothed: p_N = ε_N P(g −
+  // λ_N/ε_N).
+  TrialState s;
+  s.pressure = normal_pressure(k.gap, eps_n, lambda, smoothing);
+  if (!s.pressure.active) return f;
 
   const Eigen::Vector3d& n = k.normal;
-  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d P_T = I - n * n.transpose();
-  const double p_n = np.value;
-  const Eigen::VectorXd N_old = facet_shape_functions(no, xi_old);
+  s.P_T = Eigen::Matrix3d::Identity() - n * n.transpose();
+  const Eigen::Matrix<double, NO, 1> N_old = facet_shape_functions<NO>(xi_old);
   const Eigen::Vector3d x_old = old_master * N_old;
-  const Eigen::Vector3d v = t_old + eps_t * (k.x_s - x_old);
-  const Eigen::Vector3d t_trial = P_T * v;
-  const auto [t, state] = return_map(t_trial, p_n, mu);
-  f.traction = t;
-  f.state = state;
-  f.pressure = p_n;
-  f.slip_increment = (t_trial - t) / eps_t;  // zero in stick
-  f.dissipation = mu * p_n * f.slip_increment.norm() * w;
-  f.residual.head(dofs) = w * k.P.transpose() * t;
+  s.v = t_old + eps_t * (k.x_s - x_old);
+  s.t_trial = s.P_T * s.v;
+  const ReturnMapResult returned = return_map(s.t_trial, s.pressure.value, mu);
+  s.t = returned.traction;
+  s.state = returned.state;
+  f.traction = s.t;
+  f.state = s.state;
+  f.pressure = s.pressure.value;
+  f.slip_increment = (s.t_trial - s.t) / eps_t;  // zero in stick
+  f.dissipation = mu * s.pressure.value * f.slip_increment.norm() * w;
+  f.residual.head(dofs) = w * k.P.transpose() * s.t;
   if (mu == 0) return f;  // t ≡ 0: R = 0, K = 0
 
-  // Derivatives w.r.t. y = [slave, current facet, old facet] (total columns).
-  const detail::ProjectionDerivatives d = detail::projection_derivatives(k, who);
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(2, total);  // dξ*/dy
+  // dR = w ([Pᵀ; 0] dt + [P_,αᵀ t; 0] dξ*^α), with y = [slave, current facet, old facet].
+  const detail::ProjectionDerivatives<NM> d = detail::projection_derivatives<NM>(k, who);
+  Rows2 D = Rows2::Zero(2, total);  // dξ*/dy
   D.leftCols(dofs) = d.dxi_dx;
-  Eigen::MatrixXd P_full = Eigen::MatrixXd::Zero(3, total);
-  P_full.leftCols(dofs) = k.P;
-  const Eigen::MatrixXd dr = P_full - k.a * D;
-  std::array<Eigen::MatrixXd, 2> da;
-  for (int alpha = 0; alpha < 2; ++alpha) {
-    da[alpha] = k.x12 * D.row(1 - alpha);  // x_,11 = x_,22 = 0
-    for (int a = 0; a < k.nm; ++a) da[alpha].middleCols<3>(3 * (k.ns + a)) += k.dN(a, alpha) * I;
-  }
-  const Eigen::MatrixXd dc = -cross_matrix(k.a.col(1)) * da[0] + cross_matrix(k.a.col(0)) * da[1];
-  const Eigen::MatrixXd dn = (P_T / k.c.norm()) * dc;
-  const Eigen::RowVectorXd dg = n.transpose() * dr + k.r.transpose() * dn;
-  const Eigen::RowVectorXd dp = np.slope * dg;
-  Eigen::MatrixXd dv = Eigen::MatrixXd::Zero(3, total);
-  for (int i = 0; i < k.ns; ++i) dv.middleCols<3>(3 * i) = eps_t * weights[i] * I;
-  for (int b = 0; b < no; ++b) dv.middleCols<3>(dofs + 3 * b) = -eps_t * N_old[b] * I;
-  const Eigen::MatrixXd dt_trial = P_T * dv - n * (v.transpose() * dn) - n.dot(v) * dn;
-
-  Eigen::MatrixXd dt;
-  switch (state) {
-    case StickSlip::Stick:
-      dt = dt_trial;
-      break;
-    case StickSlip::Slip: {  // μ > 0 and Φ > 0 : |t_trial| > μ p_N ≥ 0, m is defined
-      const double norm = t_trial.norm();
-      const Eigen::Vector3d m = t_trial / norm;
-      dt = mu * m * dp + (mu * p_n / norm) * (I - m * m.transpose()) * dt_trial;
-      break;
-    }
-    case StickSlip::Open:
-      throw std::logic_error("surface_friction: return_map never returns Open");
-  }
+  const Rows3 dt = traction_derivative<NM>(k, D, weights, {N_old.data(), NO}, s, eps_t, mu);
   f.tangent.topRows(dofs) = w * (k.P.transpose() * dt);
   for (int alpha = 0; alpha < 2; ++alpha)
-    f.tangent.topRows(dofs) += w * (k.P_xi[alpha].transpose() * t) * D.row(alpha);
+    f.tangent.topRows(dofs) += w * (k.P_xi[alpha].transpose() * s.t) * D.row(alpha);
   return f;
+}
+
+#define HYPERCONTACT_SURFACE_FRICTION(NM, NO)                                                \
+  template SurfaceFriction surface_friction<NM, NO>(                                         \
+      const SlaveNodes&, const SlaveWeights&, const FacetNodes<NM>&, const FacetProjection&, \
+      const FacetNodes<NO>&, const Eigen::Vector2d&, const Eigen::Vector3d&, double, double, \
+      double, double, double, double);
+HYPERCONTACT_SURFACE_FRICTION(3, 3)
+HYPERCONTACT_SURFACE_FRICTION(3, 4)
+HYPERCONTACT_SURFACE_FRICTION(4, 3)
+HYPERCONTACT_SURFACE_FRICTION(4, 4)
+#undef HYPERCONTACT_SURFACE_FRICTION
+
+namespace {
+template <int NM>
+SurfaceFriction with_old_facet(const SlaveNodes& s, const SlaveWeights& M,
+                               const FacetNodes<NM>& master, const FacetProjection& projection,
+                               const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
+                               const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
+                               double mu, double lambda, double smoothing) {
+  if (detail::facet_node_count(old_master, "surface_friction (old facet)") == 3)
+    return surface_friction<NM, 3>(s, M, master, projection, FacetNodes<3>(old_master), xi_old,
+                                   t_old, w, eps_n, eps_t, mu, lambda, smoothing);
+  return surface_friction<NM, 4>(s, M, master, projection, FacetNodes<4>(old_master), xi_old, t_old,
+                                 w, eps_n, eps_t, mu, lambda, smoothing);
+}
+}  // namespace
+
+SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
+                                 const NodeCoordinates& master, const FacetProjection& projection,
+                                 const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
+                                 const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
+                                 double mu, double lambda, double smoothing) {
+  check_parameters(w, eps_n, eps_t, mu);
+  const SlaveNodes s = detail::bounded_slave(slave, weights, who);
+  const SlaveWeights M = weights;
+  if (detail::facet_node_count(master, who) == 3)
+    return with_old_facet<3>(s, M, FacetNodes<3>(master), projection, old_master, xi_old, t_old, w,
+                             eps_n, eps_t, mu, lambda, smoothing);
+  return with_old_facet<4>(s, M, FacetNodes<4>(master), projection, old_master, xi_old, t_old, w,
+                           eps_n, eps_t, mu, lambda, smoothing);
 }
 
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
@@ -137,8 +204,7 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                                  double w, double eps_n, double eps_t, double mu, double lambda,
                                  double smoothing) {
   check_parameters(w, eps_n, eps_t, mu);
-  require(weights.size() == slave.cols() && slave.allFinite() && weights.allFinite(),
-          "slave coordinates and weights must be finite and as many");
+  detail::bounded_slave(slave, weights, who);
   return surface_friction(slave, weights, master, project_to_facet(master, slave * weights),
                           old_master, xi_old, t_old, w, eps_n, eps_t, mu, lambda, smoothing);
 }

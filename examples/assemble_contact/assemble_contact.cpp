@@ -58,9 +58,8 @@ int main(int argc, char** argv) {
     for (PetscInt i = 0; i < num_dofs; ++i) dofs[i] = static_cast<std::int32_t>(i);
     dofs[9] = -1;
 
-    const hc::RigidContactEvaluation contact =
-        hc::evaluate_rigid_contact({.obstacle = plane, .x = x, .area = area, .dofs = dofs,
-                                    .eps_n = eps_n});
+    const hc::RigidContactEvaluation contact = hc::evaluate_rigid_contact(
+        {.obstacle = plane, .x = x, .area = area, .dofs = dofs, .eps_n = eps_n});
 
     ISLocalToGlobalMapping map = identity_mapping();
     Vec b;

@@ -19,7 +19,8 @@ inline ISLocalToGlobalMapping local_to_global(PetscInt n, std::vector<PetscInt> 
     std::iota(l2g.begin(), l2g.end(), 0);
   }
   ISLocalToGlobalMapping map;
-  EXPECT_EQ(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, n, l2g.data(), PETSC_COPY_VALUES, &map), 0);
+  EXPECT_EQ(
+      ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, n, l2g.data(), PETSC_COPY_VALUES, &map), 0);
   return map;
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <hypercontact/narrow_phase.hpp>
 #include <hypercontact/node_to_surface.hpp>
 #include <hypercontact/surface_contact.hpp>
 #include <map>
@@ -114,8 +115,18 @@ struct SurfaceScene {
 
   /// The input at coordinates y (the scene's own by default).
   SurfaceContactInput input(std::span<const double> y) const {
-    return {y,          point_nodes, point_weights, point_area, facets,     edge_neighbour,
-            offsets,    candidates,  dofs,          eps_n,      multipliers, smoothing};
+    return {y,
+            point_nodes,
+            point_weights,
+            point_area,
+            {facets, nodes_per_facet},
+            edge_neighbour,
+            offsets,
+            candidates,
+            dofs,
+            eps_n,
+            multipliers,
+            smoothing};
   }
   SurfaceContactInput input() const { return input(x); }
 
@@ -142,8 +153,8 @@ struct SurfaceScene {
     }
     const std::span<const std::int32_t> c(candidates.data() + offsets[p],
                                           candidates.data() + offsets[p + 1]);
-    out.closest = closest_facet(out.slave * out.weights, c, facets, nodes_per_facet, x);
-    out.master = gather_facet(out.closest.facet, facets, nodes_per_facet, x);
+    out.closest = closest_facet(out.slave * out.weights, c, {facets, nodes_per_facet}, x);
+    out.master = gather_facet(out.closest.facet, {facets, nodes_per_facet}, x);
     out.touch = 1e-10 * (out.master.col(2) - out.master.col(0)).norm();
     return out;
   }
@@ -160,12 +171,14 @@ struct SurfaceScene {
   double multiplier(std::size_t p) const { return multipliers.empty() ? 0.0 : multipliers[p]; }
 };
 
-/// A 2 × 2 warped master on [0, 2]², three slave nodes (below facets 0 and 3, above facet 1)
-/// and the four Gauss points of a slave quadrilateral below facet 2.
-inline SurfaceScene face_scene() {
+/// A 2 × 2 warped master on [0, 2]² (quadrilaterals, or each split into two triangles), three
+/// slave nodes (below cells 0 and 3, above cell 1) and the four Gauss points of a slave
+/// quadrilateral below cell 2.
+inline SurfaceScene face_scene(bool triangles = false) {
   SurfaceScene s;
-  s.add_master_grid(2, 2, 0.0, 0.0, 1.0,
-                    [](double x, double y) { return 0.1 * std::sin(x) * std::cos(1.3 * y); });
+  s.add_master_grid(
+      2, 2, 0.0, 0.0, 1.0, [](double x, double y) { return 0.1 * std::sin(x) * std::cos(1.3 * y); },
+      triangles);
   s.add_slave_node({0.4, 0.6, -0.05}, 0.3);
   s.add_slave_node({1.6, 1.3, -0.05}, 0.2);
   s.add_slave_node({1.5, 0.5, 0.3}, 0.25);

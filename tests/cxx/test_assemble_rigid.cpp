@@ -44,7 +44,8 @@ void expect_tangent_placement(const std::array<PetscInt, n>& l2g) {
   const Eigen::MatrixXd values = test::dense(A);
   const std::array<double, n* n> reference = expected_dense(l2g);
   for (PetscInt k = 0; k < n * n; ++k)
-    EXPECT_DOUBLE_EQ(values(k / n, k % n), 2 * reference[k]) << "row " << k / n << ", column " << k % n;
+    EXPECT_DOUBLE_EQ(values(k / n, k % n), 2 * reference[k])
+        << "row " << k / n << ", column " << k % n;
   MatDestroy(&A);
 }
 

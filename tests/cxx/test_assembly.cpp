@@ -46,7 +46,9 @@ Eigen::MatrixXd expected_tangent() {
   return A;
 }
 /// The same, renumbered by `reversed`.
-Eigen::MatrixXd reversed_matrix(const Eigen::MatrixXd& A) { return A.colwise().reverse().rowwise().reverse(); }
+Eigen::MatrixXd reversed_matrix(const Eigen::MatrixXd& A) {
+  return A.colwise().reverse().rowwise().reverse();
+}
 
 TEST(Assembly, ResidualIntoALocalArrayAdds) {
   const ContactElements c = two_elements(DofNumbering::Local);

@@ -22,18 +22,18 @@ namespace hypercontact {
 namespace {
 
 using test::edge_outward;
+using test::fd_gradient_stacked;
+using test::fd_jacobian_stacked;
 using test::flat_quad;
 using test::one_node;
 using test::point_at;
+using test::relative_error;
 using test::single;
+using test::stack;
 using test::surface_point;
 using test::triangle;
-using test::warped_quad;
-using test::fd_gradient_stacked;
-using test::fd_jacobian_stacked;
-using test::relative_error;
-using test::stack;
 using test::unstack;
+using test::warped_quad;
 
 constexpr double w = 0.37;
 constexpr double eps_n = 250.0;
@@ -41,7 +41,6 @@ constexpr double eps_n = 250.0;
 using test::placed;
 const Eigen::Matrix3d& rotation = test::test_rotation;
 const Eigen::Vector3d& shift = test::test_shift;
-
 
 /// Element data and its checks against finite differences over all 3 (ns + nm) coordinates.
 struct Element {
@@ -330,7 +329,8 @@ TEST(NodeToSurface, TouchToleranceClosesRoundingLevelGaps) {
   const SurfaceContact open = node_to_surface(single(x), one_node, flat_quad, p, w, eps_n);
   EXPECT_FALSE(open.closed);
   EXPECT_TRUE(open.tangent.isZero(0.0));
-  const SurfaceContact touched = node_to_surface(single(x), one_node, flat_quad, p, w, eps_n, 1e-10);
+  const SurfaceContact touched =
+      node_to_surface(single(x), one_node, flat_quad, p, w, eps_n, 1e-10);
   EXPECT_TRUE(touched.closed);
   const Eigen::Matrix3d expected = w * eps_n * open.normal * open.normal.transpose();
   EXPECT_LT((touched.tangent.topLeftCorner<3, 3>() - expected).cwiseAbs().maxCoeff(),
@@ -381,82 +381,6 @@ TEST(NodeToSurface, RejectsBadInput) {
   EXPECT_NO_THROW(call(single(x), one_node, flat_quad, 0.0, eps_n));
 }
 
-/// A 2 × 2 patch of unit quadrilaterals in z = 0 (nodes j * 3 + i at (i, j, 0)).
-struct Patch {
-  std::vector<double> coords;
-  std::vector<std::int32_t> quads{0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 7, 6, 4, 5, 8, 7};
-  Patch() {
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) coords.insert(coords.end(), {double(i), double(j), 0.0});
-  }
-  ClosestFacet closest(const Eigen::Vector3d& x, std::vector<std::int32_t> candidates) const {
-    return closest_facet(x, candidates, quads, 4, coords);
-  }
-};
-
-TEST(ClosestFacet, PicksTheClosestWithTieRules) {
-  const Patch patch;
-  const std::vector<std::int32_t> all{0, 1, 2, 3}, reversed{3, 2, 1, 0};
-  for (const auto& candidates : {all, reversed}) {
-    const ClosestFacet inside = patch.closest({1.5, 0.5, -0.1}, candidates);
-    EXPECT_EQ(inside.facet, 1);
-    EXPECT_EQ(inside.projection.feature, Feature::Face);
-    EXPECT_NEAR(inside.projection.distance, 0.1, 1e-15);
-    // Above the edge shared by facets 0 and 1 (and the node shared by all): Face on both, the
-    // lower index wins.
-    EXPECT_EQ(patch.closest({1.0, 0.5, -0.1}, candidates).facet, 0);
-    EXPECT_EQ(patch.closest({1.0, 1.0, 0.2}, candidates).facet, 0);
-    EXPECT_EQ(patch.closest({1.5, 1.0, 0.2}, candidates).facet, 1);
-    // Beyond the boundary: an edge of facet 1; at node 5, a vertex of facets 1 and 3.
-    const ClosestFacet edge = patch.closest({2.5, 0.5, 0.0}, candidates);
-    EXPECT_EQ(edge.facet, 1);
-    EXPECT_EQ(edge.projection.feature, Feature::Edge);
-    const ClosestFacet vertex = patch.closest({2.5, 1.0, 0.0}, candidates);
-    EXPECT_EQ(vertex.facet, 1);
-    EXPECT_EQ(vertex.projection.feature, Feature::Vertex);
-  }
-  // Only the candidates are tried.
-  EXPECT_EQ(patch.closest({1.5, 0.5, -0.1}, {2, 3}).facet, 3);
-}
-
-TEST(ClosestFacet, FaceWinsATieAgainstAnEdgeOfAHigherRankedFacet) {
-  // Facet 0 hinges down from the edge x = 1 of facet 1 (flat): above that edge, facet 1 gives a
-  // Face point on its boundary, facet 0 an Edge point, at the same distance.
-  const std::vector<double> coords{1, 0, 0, 2, 0, -1, 2, 1, -1, 1, 1, 0, 0, 0, 0, 0, 1, 0};
-  const std::vector<std::int32_t> quads{0, 1, 2, 3, 4, 0, 3, 5};
-  const ClosestFacet c =
-      closest_facet({1.0, 0.5, 0.3}, std::vector<std::int32_t>{0, 1}, quads, 4, coords);
-  EXPECT_EQ(c.facet, 1);
-  EXPECT_EQ(c.projection.feature, Feature::Face);
-  const FacetProjection other =
-      project_to_facet(gather_facet(0, quads, 4, coords), {1.0, 0.5, 0.3});
-  EXPECT_EQ(other.feature, Feature::Edge);
-  EXPECT_NEAR(other.distance, c.projection.distance, 1e-15);
-}
-
-TEST(ClosestFacet, TrianglesAndBadInput) {
-  const std::vector<double> coords{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
-  const std::vector<std::int32_t> tris{0, 1, 2, 1, 3, 2};
-  EXPECT_EQ(closest_facet({0.8, 0.7, 0.1}, std::vector<std::int32_t>{0, 1}, tris, 3, coords).facet,
-            1);
-  const auto call = [&](std::vector<std::int32_t> candidates, std::vector<std::int32_t> facets,
-                        int npf) {
-    return closest_facet({0.2, 0.2, 0.1}, candidates, facets, npf, coords);
-  };
-  EXPECT_THROW(call({}, tris, 3), std::invalid_argument);
-  EXPECT_THROW(call({0, 2}, tris, 3), std::out_of_range);
-  EXPECT_THROW(call({-1}, tris, 3), std::out_of_range);
-  EXPECT_THROW(call({0}, {0, 1, 9}, 3), std::out_of_range);
-  EXPECT_THROW(call({0}, tris, 5), std::invalid_argument);
-  EXPECT_THROW(call({0}, {0, 1, 2, 1}, 3), std::invalid_argument);
-  try {
-    call({0, 1}, {0, 1, 2, 0, 1, 1}, 3);
-    ADD_FAILURE() << "a degenerate candidate must throw";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("candidate facet 1"), std::string::npos) << e.what();
-  }
-}
-
 // --- Augmented Lagrangian: multiplier λ_N > 0, p_N = ⟨λ_N − ε_N ĝ⟩ ------------------------------
 
 /// An element with a multiplier: W = w ⟨λ_N − ε_N ĝ⟩² / (2 ε_N), R against FD of W, K against FD
@@ -476,7 +400,9 @@ struct AugmentedElement {
     const auto s = unstack(y, {slave, master});
     return node_to_surface(s[0], weights, s[1], w, eps_n, lambda).residual;
   }
-  SurfaceContact evaluate() const { return node_to_surface(slave, weights, master, w, eps_n, lambda); }
+  SurfaceContact evaluate() const {
+    return node_to_surface(slave, weights, master, w, eps_n, lambda);
+  }
 };
 
 /// The signed distance ĝ of the tests' own: g on the face, sign(g) |r| off it.
@@ -561,12 +487,12 @@ TEST(NodeToSurfaceAugmented, EdgeAndVertexBelowAndAbove) {
   const Eigen::Vector3d edge_point = surface_point(warped_quad, xi_edge);
   const Eigen::Vector3d vertex = warped_quad.col(2);
   for (const Case& c : {
-           Case{edge_point + 0.15 * out_e - 0.1 * n_e, Feature::Edge, true},     // g < 0
-           Case{edge_point + 0.03 * out_e + 0.05 * n_e, Feature::Edge, true},    // 0 < |r| < λ/ε
-           Case{edge_point + 0.06 * out_e + 0.06 * n_e, Feature::Edge, false},   // |r| > λ/ε
-           Case{vertex + 0.1 * out_v - 0.12 * n_v, Feature::Vertex, true},       // g < 0
-           Case{vertex + 0.03 * out_v + 0.04 * n_v, Feature::Vertex, true},      // 0 < |r| < λ/ε
-           Case{vertex + 0.07 * out_v + 0.05 * n_v, Feature::Vertex, false},     // |r| > λ/ε
+           Case{edge_point + 0.15 * out_e - 0.1 * n_e, Feature::Edge, true},    // g < 0
+           Case{edge_point + 0.03 * out_e + 0.05 * n_e, Feature::Edge, true},   // 0 < |r| < λ/ε
+           Case{edge_point + 0.06 * out_e + 0.06 * n_e, Feature::Edge, false},  // |r| > λ/ε
+           Case{vertex + 0.1 * out_v - 0.12 * n_v, Feature::Vertex, true},      // g < 0
+           Case{vertex + 0.03 * out_v + 0.04 * n_v, Feature::Vertex, true},     // 0 < |r| < λ/ε
+           Case{vertex + 0.07 * out_v + 0.05 * n_v, Feature::Vertex, false},    // |r| > λ/ε
        }) {
     SCOPED_TRACE("feature " + std::to_string(static_cast<int>(c.feature)) + ", active " +
                  std::to_string(c.active));

@@ -60,7 +60,8 @@ TEST(RigidContact, AugmentedLagrangianShiftsTheGap) {
   const std::vector<double> lam = {lambda};
   auto energy = [&](const Eigen::Vector3d& y) {
     const std::vector<double> v(y.data(), y.data() + 3);
-    const RigidContactNode n = evaluate_rigid_contact(box, v, std::vector<double>{area}, eps, lam)[0];
+    const RigidContactNode n =
+        evaluate_rigid_contact(box, v, std::vector<double>{area}, eps, lam)[0];
     const double p = std::max(0.0, lambda - eps * n.projection.gap);
     return area / (2 * eps) * p * p;
   };
@@ -73,7 +74,8 @@ TEST(RigidContact, AugmentedLagrangianShiftsTheGap) {
   for (const Eigen::Vector3d x : {Eigen::Vector3d(1.02, 0.3, 1.01), Eigen::Vector3d(0.2, 0.1, 1.03),
                                   Eigen::Vector3d(0.2, 0.1, 0.97)}) {
     const std::vector<double> v(x.data(), x.data() + 3);
-    const RigidContactNode n = evaluate_rigid_contact(box, v, std::vector<double>{area}, eps, lam)[0];
+    const RigidContactNode n =
+        evaluate_rigid_contact(box, v, std::vector<double>{area}, eps, lam)[0];
     ASSERT_TRUE(n.contact.closed);
     EXPECT_NEAR(n.contact.pressure, lambda - eps * n.projection.gap, 1e-12);
     const double h = 1e-6;
@@ -87,11 +89,14 @@ TEST(RigidContact, AugmentedLagrangianShiftsTheGap) {
   }
   // Beyond λ/ε: open.
   const std::vector<double> far = {0.2, 0.1, 1.05};
-  EXPECT_FALSE(evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, lam)[0].contact.closed);
-  EXPECT_THROW(evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, std::vector<double>{-1.0}),
-               std::invalid_argument);
-  EXPECT_THROW(evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, std::vector<double>{1, 2}),
-               std::invalid_argument);
+  EXPECT_FALSE(
+      evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, lam)[0].contact.closed);
+  EXPECT_THROW(
+      evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, std::vector<double>{-1.0}),
+      std::invalid_argument);
+  EXPECT_THROW(
+      evaluate_rigid_contact(box, far, std::vector<double>{area}, eps, std::vector<double>{1, 2}),
+      std::invalid_argument);
 }
 
 // --- The evaluation with element contributions ------------------------------------------------

@@ -26,9 +26,12 @@ struct FrictionScene {
   std::vector<std::int32_t> dofs = test::identity_dofs(x.size());
 
   RigidFrictionEvaluation evaluate(std::span<const double> y) const {
-    return evaluate_rigid_friction(
-        {{obstacle, y, area, dofs, eps_n, multipliers, smoothing}, xi_old, t_old, eps_t, mu,
-         with_normal});
+    return evaluate_rigid_friction({{obstacle, y, area, dofs, eps_n, multipliers, smoothing},
+                                    xi_old,
+                                    t_old,
+                                    eps_t,
+                                    mu,
+                                    with_normal});
   }
   double tangent_error() const {
     return test::dense_tangent_error([this](std::span<const double> y) { return evaluate(y); }, x);
@@ -76,9 +79,9 @@ TEST(RigidFrictionEvaluation, ElementsAreNormalPlusFrictionOfTheirNode) {
     const Eigen::Vector3d xi(&scene.x[3 * i]);
     const ObstacleProjection p = project(scene.obstacle, xi);
     const NodalContact n = normal_penalty(p, scene.area[i], eps_n);
-    const FrictionResult f = coulomb_friction(p, xi, Eigen::Vector3d(&scene.xi_old[3 * i]),
-                                              Eigen::Vector3d(&scene.t_old[3 * i]), scene.area[i],
-                                              eps_n, eps_t, mu);
+    const FrictionResult f =
+        coulomb_friction(p, xi, Eigen::Vector3d(&scene.xi_old[3 * i]),
+                         Eigen::Vector3d(&scene.t_old[3 * i]), scene.area[i], eps_n, eps_t, mu);
     EXPECT_EQ(e.state[i], static_cast<std::int8_t>(f.state));
     EXPECT_EQ(e.gap[i], p.gap);
     EXPECT_EQ(e.dissipation[i], f.dissipation);

@@ -52,13 +52,16 @@ std::set<Feature> expect_node_to_surface_elements(const SurfaceScene& s) {
     const std::size_t el = k++;
     EXPECT_EQ(e.elements.point[el], static_cast<std::int32_t>(p));
     const std::vector<std::int32_t> dofs = s.element_dofs(pr);
-    EXPECT_EQ(std::vector<std::int32_t>(e.elements.rows(el).begin(), e.elements.rows(el).end()), dofs);
-    EXPECT_EQ(std::vector<std::int32_t>(e.elements.columns(el).begin(), e.elements.columns(el).end()),
+    EXPECT_EQ(std::vector<std::int32_t>(e.elements.rows(el).begin(), e.elements.rows(el).end()),
               dofs);
+    EXPECT_EQ(
+        std::vector<std::int32_t>(e.elements.columns(el).begin(), e.elements.columns(el).end()),
+        dofs);
     const Eigen::Map<const Eigen::VectorXd> R(e.elements.element_residual(el).data(),
                                               static_cast<Eigen::Index>(dofs.size()));
     EXPECT_LE(test::relative_error(R, c.residual), 1e-14) << "point " << p;
-    EXPECT_LE(test::relative_error(e.elements.element_tangent(el), c.tangent), 1e-14) << "point " << p;
+    EXPECT_LE(test::relative_error(e.elements.element_tangent(el), c.tangent), 1e-14)
+        << "point " << p;
     for (std::size_t i = 0; i < pr.nodes.size(); ++i) force -= c.residual.segment<3>(3 * i);
   }
   EXPECT_EQ(k, e.elements.size());
@@ -69,8 +72,10 @@ std::set<Feature> expect_node_to_surface_elements(const SurfaceScene& s) {
 
 TEST(SurfaceContactEvaluation, ElementsAreNodeToSurfaceOfTheClosestFacet) {
   EXPECT_EQ(expect_node_to_surface_elements(test::face_scene()), std::set<Feature>{Feature::Face});
-  EXPECT_EQ(expect_node_to_surface_elements(test::valley_scene()), std::set<Feature>{Feature::Edge});
-  EXPECT_EQ(expect_node_to_surface_elements(test::bowl_scene()), std::set<Feature>{Feature::Vertex});
+  EXPECT_EQ(expect_node_to_surface_elements(test::valley_scene()),
+            std::set<Feature>{Feature::Edge});
+  EXPECT_EQ(expect_node_to_surface_elements(test::bowl_scene()),
+            std::set<Feature>{Feature::Vertex});
   SurfaceScene augmented = test::face_scene();
   augmented.multipliers.assign(augmented.point_area.size(), 30.0);
   expect_node_to_surface_elements(augmented);
@@ -97,11 +102,37 @@ TEST(SurfaceContactEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch)
   EXPECT_LE(tangent_error(augmented), 1e-6);
 }
 
+TEST(SurfaceContactEvaluation, TriangulatedMaster) {
+  // Flat: the point (0.7, 0.2, −0.03) is over triangle 0 (nodes (0,0), (1,0), (1,1)) at
+  // ξ = (0.5, 0.2), N = (0.3, 0.5, 0.2): R = w ε_N g [n; −N_a n], n = e_z.
+  SurfaceScene flat;
+  flat.add_master_grid(
+      2, 2, 0.0, 0.0, 1.0, [](double, double) { return 0.0; }, true);
+  flat.add_slave_node({0.7, 0.2, -0.03}, 0.3);
+  const SurfaceContactEvaluation e = evaluate(flat, flat.x);
+  ASSERT_EQ(e.elements.size(), 1u);
+  EXPECT_EQ(e.facet[0], 0);
+  const double f = 0.3 * flat.eps_n * -0.03;
+  const std::vector<double> N{0.3, 0.5, 0.2};
+  ASSERT_EQ(e.elements.rows(0).size(), 12u);  // the slave node and three master nodes
+  EXPECT_NEAR(e.elements.element_residual(0)[2], f, 1e-12);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(e.elements.element_residual(0)[3 * (1 + a) + 2], -f * N[a], 1e-12);
+    EXPECT_NEAR(e.elements.element_residual(0)[3 * (1 + a)], 0.0, 1e-15);
+  }
+  // Warped, with nodes and Gauss points: the old path's elements, and their derivatives.
+  const SurfaceScene warped = test::face_scene(true);
+  EXPECT_EQ(expect_node_to_surface_elements(warped), std::set<Feature>{Feature::Face});
+  EXPECT_EQ(evaluate(warped, warped.x).elements.size(), 6u);
+  EXPECT_LE(tangent_error(warped), 1e-6);
+  EXPECT_LE(tangent_error(flat), 1e-6);
+}
+
 TEST(SurfaceContactEvaluation, OpenOffSurfaceAndUnpairedPointsAddNothing) {
   SurfaceScene s;
   s.add_master_grid(1, 1, 0.0, 0.0, 1.0, [](double, double) { return 0.0; });
-  s.add_slave_node({0.5, 0.5, 0.1}, 0.2);    // open
-  s.add_slave_node({1.5, 0.5, -0.1}, 0.2);   // beyond the rim: OffSurface
+  s.add_slave_node({0.5, 0.5, 0.1}, 0.2);   // open
+  s.add_slave_node({1.5, 0.5, -0.1}, 0.2);  // beyond the rim: OffSurface
   const std::int32_t n = s.add_node({0.5, 0.5, -0.1});
   s.add_point({n}, {1.0}, 0.2, /*with_candidates=*/false);  // below, but no candidate
   const SurfaceContactEvaluation e = evaluate(s, s.x);

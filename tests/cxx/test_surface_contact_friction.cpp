@@ -39,9 +39,10 @@ struct FrictionScene {
 
 /// face_scene with histories: point 0 on its own facet close by (stick), point 1 on another
 /// facet far away (slip), point 2 (open) none; Gauss points: none, none, the same facet with a
-/// traction, another facet.
-FrictionScene face_friction() {
-  return {test::face_scene(),
+/// traction, another facet. (On the triangulated master the facets are the first triangles of
+/// the same cells, and the history ξ's other points of them.)
+FrictionScene face_friction(bool triangles = false) {
+  return {test::face_scene(triangles),
           {0, 2, -1, -1, -1, 2, 3},
           {-0.2, 0.21, 0.5, -0.9, 0, 0, 0, 0, 0, 0, -0.3, 0.1, -0.5, -0.9},
           {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2.0, -1.0, 0.5, 0, 0, 0, 0, 0, 0}};
@@ -67,13 +68,16 @@ void expect_normal_plus_friction_elements(const FrictionScene& f) {
   for (std::size_t p = 0; p < s.point_area.size(); ++p) {
     const SurfaceScene::Pairing pr = s.pairing(p);
     const double lambda = s.multiplier(p);
-    const SurfaceContact c = node_to_surface(pr.slave, pr.weights, pr.master, pr.closest.projection,
-                                             s.point_area[p], s.eps_n, pr.touch, lambda, s.smoothing);
+    const SurfaceContact c =
+        node_to_surface(pr.slave, pr.weights, pr.master, pr.closest.projection, s.point_area[p],
+                        s.eps_n, pr.touch, lambda, s.smoothing);
     const bool history = f.old_facet[p] >= 0;
     const std::int32_t old = history ? f.old_facet[p] : pr.closest.facet;
-    const NodeCoordinates old_master = gather_facet(old, s.facets, 4, s.x);
-    const Eigen::Vector2d xi_old = history ? Eigen::Vector2d(&f.xi_old[2 * p]) : pr.closest.projection.xi;
-    const Eigen::Vector3d t_old = history ? Eigen::Vector3d(&f.t_old[3 * p]) : Eigen::Vector3d::Zero();
+    const NodeCoordinates old_master = gather_facet(old, {s.facets, s.nodes_per_facet}, s.x);
+    const Eigen::Vector2d xi_old =
+        history ? Eigen::Vector2d(&f.xi_old[2 * p]) : pr.closest.projection.xi;
+    const Eigen::Vector3d t_old =
+        history ? Eigen::Vector3d(&f.t_old[3 * p]) : Eigen::Vector3d::Zero();
     const SurfaceFriction fr =
         surface_friction(pr.slave, pr.weights, pr.master, pr.closest.projection, old_master, xi_old,
                          t_old, s.point_area[p], s.eps_n, eps_t, mu, lambda, s.smoothing);
@@ -88,12 +92,14 @@ void expect_normal_plus_friction_elements(const FrictionScene& f) {
     ASSERT_LT(el, e.elements.size());
     std::vector<std::int32_t> columns = s.element_dofs(pr);
     const auto n = static_cast<Eigen::Index>(columns.size());
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d) columns.push_back(s.dofs[3 * s.facets[4 * old + a] + d]);
-    EXPECT_EQ(std::vector<std::int32_t>(e.elements.columns(el).begin(), e.elements.columns(el).end()),
-              columns);
+    const int k = s.nodes_per_facet;
+    for (int a = 0; a < k; ++a)
+      for (int d = 0; d < 3; ++d) columns.push_back(s.dofs[3 * s.facets[k * old + a] + d]);
+    EXPECT_EQ(
+        std::vector<std::int32_t>(e.elements.columns(el).begin(), e.elements.columns(el).end()),
+        columns);
     const Eigen::VectorXd R = c.residual + fr.residual.head(n);
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n + 12);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n + 3 * k);
     K.leftCols(n) = c.tangent;
     if (history) K += fr.tangent.topRows(n);
     const Eigen::Map<const Eigen::VectorXd> stored(e.elements.element_residual(el).data(), n);
@@ -134,6 +140,15 @@ TEST(SurfaceFrictionEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch
   EXPECT_LE(augmented.tangent_error(), 1e-6);
   augmented.contact.smoothing = 0.05;
   EXPECT_LE(augmented.tangent_error(), 1e-6);
+}
+
+TEST(SurfaceFrictionEvaluation, TriangulatedMaster) {
+  const FrictionScene f = face_friction(true);
+  const SurfaceFrictionEvaluation e = f.evaluate(f.contact.x);
+  EXPECT_EQ(e.elements.size(), 6u);
+  EXPECT_TRUE(states(e).count(StickSlip::Slip));
+  expect_normal_plus_friction_elements(f);
+  EXPECT_LE(f.tangent_error(), 1e-6);
 }
 
 TEST(SurfaceFrictionEvaluation, RejectsAnInconsistentHistory) {

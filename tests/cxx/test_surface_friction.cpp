@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <hypercontact/facet_projection.hpp>
+#include <hypercontact/narrow_phase.hpp>
 #include <hypercontact/node_to_surface.hpp>
 #include <hypercontact/surface_friction.hpp>
 #include <limits>
@@ -22,15 +23,15 @@ namespace hypercontact {
 namespace {
 
 using test::edge_outward;
+using test::fd_jacobian_stacked;
 using test::flat_quad;
 using test::one_node;
 using test::point_at;
+using test::relative_error;
 using test::single;
+using test::stack;
 using test::surface_point;
 using test::triangle;
-using test::fd_jacobian_stacked;
-using test::relative_error;
-using test::stack;
 using test::unstack;
 
 constexpr double w = 0.37;
@@ -47,7 +48,6 @@ const NodeCoordinates warped_a =
 /// Shares warped_a's edge 1 (its nodes 1, 2) as its edge 3.
 const NodeCoordinates warped_b =
     placed({{1.2, 0.1, -0.1}, {2.3, 0.0, 0.15}, {2.2, 1.1, -0.1}, {1.1, 0.9, 0.3}});
-
 
 /// A friction element: the unknowns are slave, current facet and old facet nodes.
 struct Element {
@@ -356,7 +356,7 @@ TEST(SurfaceFriction, SlidingSequenceAcrossFacetsMatchesClosedForm) {
   const Eigen::Vector3d e = rotation * Eigen::Vector3d(1, 0.1, 0).normalized();
   const Eigen::Vector3d x0 = rotation * Eigen::Vector3d(0.2, 0.4, -depth) + shift;
 
-  ClosestFacet first = closest_facet(x0, candidates, quads, 4, coords);
+  ClosestFacet first = closest_facet(x0, candidates, {quads, 4}, coords);
   std::int32_t facet_old = first.facet;  // first contact: no tangential history
   Eigen::Vector2d xi_old = first.projection.xi;
   Eigen::Vector3d t_old = Eigen::Vector3d::Zero();
@@ -364,11 +364,11 @@ TEST(SurfaceFriction, SlidingSequenceAcrossFacetsMatchesClosedForm) {
   std::vector<int> visited;
   for (int k = 1; k <= steps; ++k) {
     const Eigen::Vector3d x = x0 + k * du * e;
-    const ClosestFacet c = closest_facet(x, candidates, quads, 4, coords);
+    const ClosestFacet c = closest_facet(x, candidates, {quads, 4}, coords);
     if (visited.empty() || visited.back() != c.facet) visited.push_back(c.facet);
-    const NodeCoordinates master = gather_facet(c.facet, quads, 4, coords);
+    const NodeCoordinates master = gather_facet(c.facet, {quads, 4}, coords);
     const SurfaceFriction f = surface_friction(single(x), one_node, master, c.projection,
-                                               gather_facet(facet_old, quads, 4, coords), xi_old,
+                                               gather_facet(facet_old, {quads, 4}, coords), xi_old,
                                                t_old, w, eps_n, eps_t, mu);
     ASSERT_NEAR(f.pressure, p_n, 1e-9);
     if (eps_t * k * du < radius) {
@@ -450,8 +450,12 @@ TEST(SurfaceFrictionAugmented, StickAndSlipOnTheFaceBelowAndAbove) {
 TEST(SurfaceFrictionAugmented, BothSidesOfTheStickSlipTransitionAtAPositiveGap) {
   const Eigen::Vector2d xi(0.3, 0.2);
   const double gap = 0.01, lambda = 6.0, radius = mu * (lambda - eps_n * gap);
-  Element e{single(point_at(warped_a, xi, gap)), one_node, warped_a, warped_a,
-            xi - Eigen::Vector2d(0.003, -0.002), Eigen::Vector3d::Zero()};
+  Element e{single(point_at(warped_a, xi, gap)),
+            one_node,
+            warped_a,
+            warped_a,
+            xi - Eigen::Vector2d(0.003, -0.002),
+            Eigen::Vector3d::Zero()};
   e.lambda = lambda;
   for (const auto& [factor, state] :
        {std::pair{1 - 1e-3, StickSlip::Stick}, std::pair{1 + 1e-3, StickSlip::Slip}}) {
@@ -463,7 +467,8 @@ TEST(SurfaceFrictionAugmented, BothSidesOfTheStickSlipTransitionAtAPositiveGap) 
 
 TEST(SurfaceFrictionAugmented, EdgeAndVertex) {
   const Eigen::Vector2d xi_edge(1.0, -0.2);
-  const Eigen::Vector3d out_e = edge_outward(warped_a, 1, xi_edge), n_e = facet_normal(warped_a, xi_edge);
+  const Eigen::Vector3d out_e = edge_outward(warped_a, 1, xi_edge),
+                        n_e = facet_normal(warped_a, xi_edge);
   const Eigen::Vector2d xi_v = facet_vertex_xi(4, 2);
   const Eigen::Vector3d out_v =
       (edge_outward(warped_a, 1, xi_v) + edge_outward(warped_a, 2, xi_v)).normalized();
@@ -494,8 +499,12 @@ TEST(SurfaceFrictionAugmented, OpenWhereTheAugmentedPressureVanishesZeroIsPenalt
   EXPECT_TRUE(open.residual.isZero(0.0) && open.tangent.isZero(0.0));
   EXPECT_EQ(open.pressure, 0.0);
   // λ_N = 0 is the penalty call, bit for bit.
-  Element pen{single(point_at(warped_a, xi, -0.03)), one_node, warped_a, warped_a,
-              xi - Eigen::Vector2d(0.05, -0.03), Eigen::Vector3d::Zero()};
+  Element pen{single(point_at(warped_a, xi, -0.03)),
+              one_node,
+              warped_a,
+              warped_a,
+              xi - Eigen::Vector2d(0.05, -0.03),
+              Eigen::Vector3d::Zero()};
   const SurfaceFriction a = pen.evaluate();
   const SurfaceFriction b = surface_friction(pen.slave, one_node, warped_a, warped_a, pen.xi_old,
                                              pen.t_old, w, eps_n, eps_t, mu);

@@ -1,5 +1,5 @@
-// Penalty-regularised Coulomb friction of one slave node against a rigid obstacle: return
-// mapping (SPEC §2, eqs. 16–18, 27–28) in Cartesian components.
+// Penalty-regularised Coulomb friction of one slave node against a rigid obstacle: the return
+// mapping of the trial traction onto the Coulomb cone in Cartesian components.
 #pragma once
 
 #include <hypercontact/obstacle.hpp>

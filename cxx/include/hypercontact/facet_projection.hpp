@@ -1,42 +1,20 @@
-// Closest-point projection of a slave point onto one facet of a deformable master surface:
-// a bilinear quadrilateral or a linear triangle (SPEC §1).
+// Closest-point projection of a slave point onto one facet of a deformable master surface: a
+// bilinear quadrilateral or a linear triangle (conventions of facet_shape.hpp), with the number
+// of nodes NM a template parameter or, for a run-time facet (3 × n), dispatched on.
 #pragma once
 
 #include <Eigen/Core>
+#include <hypercontact/facet_shape.hpp>
 #include <hypercontact/obstacle.hpp>  // Feature
 
 namespace hypercontact {
 
-/// Node coordinates, one column per node (3 × n).
-using NodeCoordinates = Eigen::Matrix<double, 3, Eigen::Dynamic>;
-
-/// Master facet conventions (num_nodes = 4 or 3; nodes counter-clockwise seen from outside):
-///   Quadrilateral: ξ ∈ [−1, 1]², vertices ξ_a = (−1,−1), (1,−1), (1,1), (−1,1),
-///     N_a = ¼ (1 + s1_a ξ1)(1 + s2_a ξ2) with (s1_a, s2_a) = ξ_a.
-///   Triangle: ξ1 ≥ 0, ξ2 ≥ 0, ξ1 + ξ2 ≤ 1, vertices ξ_a = (0,0), (1,0), (0,1),
-///     N = (1 − ξ1 − ξ2, ξ1, ξ2).
-///   Edge k runs from vertex k to vertex (k + 1) mod n; it is a straight segment in space for
-///   both facets (a bilinear map is linear along an edge).
-///   x_M(ξ) = Σ_a N_a(ξ) x_a,  a_α = ∂x_M/∂ξ_α,  unit outward normal n = a_1 × a_2 / |a_1 × a_2|.
-/// Functions taking num_nodes throw std::invalid_argument unless it is 3 or 4.
-
-/// N_a(ξ), a = 0 … num_nodes − 1 (also valid for ξ outside the reference facet).
-Eigen::VectorXd facet_shape_functions(int num_nodes, const Eigen::Vector2d& xi);
-
-/// ∂N_a/∂ξ_α: num_nodes × 2.
-Eigen::Matrix<double, Eigen::Dynamic, 2> facet_shape_derivatives(int num_nodes,
-                                                                 const Eigen::Vector2d& xi);
-
-/// ∂²N_a/∂ξ1∂ξ2 (constant: ¼ s1_a s2_a for the quadrilateral, 0 for the triangle). The pure
-/// second derivatives ∂²N_a/∂ξ1², ∂²N_a/∂ξ2² vanish for both facets.
-Eigen::VectorXd facet_shape_mixed_derivatives(int num_nodes);
-
-/// Reference coordinates ξ_k of vertex k (k taken mod num_nodes).
-Eigen::Vector2d facet_vertex_xi(int num_nodes, int k);
-
 /// Unit outward normal a_1 × a_2 / |a_1 × a_2| at ξ of the facet with nodes x (3 × 3 or 3 × 4).
 /// Throws std::invalid_argument if the facet is degenerate (see project_to_facet) or if
 /// a_1 × a_2 vanishes at ξ (a folded quadrilateral).
+template <int NM>
+requires FacetNodeCount<NM> Eigen::Vector3d facet_normal(const FacetNodes<NM>& x,
+                                                         const Eigen::Vector2d& xi);
 Eigen::Vector3d facet_normal(const NodeCoordinates& x, const Eigen::Vector2d& xi);
 
 /// Result of project_to_facet.
@@ -72,6 +50,15 @@ struct FacetProjection {
 /// quadrilateral, the two edges from node 0 of the triangle), a zero corner (two coincident
 /// nodes or two collinear adjacent edges of a quadrilateral), or a_1 × a_2 = 0 at ξ* (folded).
 /// The result is never NaN.
+template <int NM>
+requires FacetNodeCount<NM> FacetProjection project_to_facet(const FacetNodes<NM>& master,
+                                                             const Eigen::Vector3d& x_s);
+/// The same for a facet whose number of nodes is known at run time.
 FacetProjection project_to_facet(const NodeCoordinates& master, const Eigen::Vector3d& x_s);
+
+extern template Eigen::Vector3d facet_normal<3>(const FacetNodes<3>&, const Eigen::Vector2d&);
+extern template Eigen::Vector3d facet_normal<4>(const FacetNodes<4>&, const Eigen::Vector2d&);
+extern template FacetProjection project_to_facet<3>(const FacetNodes<3>&, const Eigen::Vector3d&);
+extern template FacetProjection project_to_facet<4>(const FacetNodes<4>&, const Eigen::Vector3d&);
 
 }  // namespace hypercontact

@@ -1,13 +1,14 @@
 // Frictionless normal penalty contact of a slave point against one facet of a deformable master
-// surface (SPEC §1–2): the paper's 5-node element (one slave node against a bilinear facet) and,
-// with the same code, Gauss-point-to-surface integration (x_s = Σ M_i x_i over a slave facet).
+// surface: the paper's 5-node element (one slave node against a bilinear facet) and, with the
+// same code, Gauss-point-to-surface integration (x_s = Σ M_i x_i over a slave facet). The facet's
+// number of nodes is a template parameter (fixed-size types, nothing on the heap); the overloads
+// on NodeCoordinates dispatch on it at run time.
 #pragma once
 
 #include <Eigen/Core>
-#include <cstdint>
 #include <hypercontact/facet_projection.hpp>
 #include <hypercontact/penetration.hpp>
-#include <span>
+#include <hypercontact/surface_element_types.hpp>
 
 namespace hypercontact {
 
@@ -15,15 +16,15 @@ namespace hypercontact {
 struct SurfaceContact {
   /// R = ∂W/∂x, 3 (ns + nm) entries: the ns slave nodes first, then the nm master nodes, each as
   /// (x, y, z). Added to the internal-force residual.
-  Eigen::VectorXd residual;
-  Eigen::MatrixXd tangent;  ///< K = ∂R/∂x, same ordering, symmetric
-  double gap;               ///< g = (x_s − x_M(ξ*)) · n
-  double pressure;          ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
-  Eigen::Vector3d normal;   ///< n: unit outward facet normal at ξ*
-  Eigen::Vector2d xi;       ///< ξ*
-  Feature feature;          ///< as the projection
-  int local_index;          ///< as the projection
-  bool closed;              ///< g ≤ 0 (augmented: p_N > 0): the element is active
+  ElementVector residual;
+  ElementMatrix tangent;   ///< K = ∂R/∂x, same ordering, symmetric
+  double gap;              ///< g = (x_s − x_M(ξ*)) · n
+  double pressure;         ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
+  Eigen::Vector3d normal;  ///< n: unit outward facet normal at ξ*
+  Eigen::Vector2d xi;      ///< ξ*
+  Feature feature;         ///< as the projection
+  int local_index;         ///< as the projection
+  bool closed;             ///< g ≤ 0 (augmented: p_N > 0): the element is active
 };
 
 /// Contact element of a slave point x_s = Σ_i M_i x_i (i over the ns columns of `slave`; one
@@ -77,6 +78,12 @@ struct SurfaceContact {
 /// penetration P, active where ĝ < λ_N/ε_N + δ, energy W = w ε_N Q(ĝ − λ_N/ε_N),
 ///   residual R = −w p_N ∇ĝ,   tangent K = −w (dp_N/dĝ) ∇ĝ ∇ĝᵀ − w p_N ∇²ĝ
 /// (dp_N/dĝ = ε_N P' ∈ [−ε_N, 0]; the augmented formulas above with ε_N → −dp_N/dĝ).
+template <int NM>
+requires FacetNodeCount<NM> SurfaceContact
+node_to_surface(const SlaveNodes& slave, const SlaveWeights& weights, const FacetNodes<NM>& master,
+                const FacetProjection& projection, double w, double eps_n, double touch = 0.0,
+                double lambda = 0.0, double smoothing = 0.0);
+/// The same for a slave point and a facet of run-time sizes (ns ≤ 4, 3 or 4 facet nodes).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
                                double w, double eps_n, double touch = 0.0, double lambda = 0.0,
@@ -91,31 +98,13 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
 /// g ≤ touch as node_to_surface; with λ_N > 0 the augmented W = w ⟨λ_N − ε_N ĝ⟩² / (2 ε_N).
 double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                               const NodeCoordinates& master, double w, double eps_n,
-                              double touch = 0.0, double lambda = 0.0,
-                              double smoothing = 0.0);
+                              double touch = 0.0, double lambda = 0.0, double smoothing = 0.0);
 
-/// The closest of several candidate facets to a slave point (narrow phase).
-struct ClosestFacet {
-  std::int32_t facet;          ///< the winning candidate: a row of `facets`
-  FacetProjection projection;  ///< project_to_facet onto that facet
-};
-
-/// Projects x_s onto every candidate facet and returns the closest.
-/// facets: num_facets × nodes_per_facet node indices, row-major (nodes_per_facet = 4 or 3, node
-///   order as facet_projection.hpp); coords: num_nodes × 3, row-major (current coordinates);
-///   candidates: rows of `facets` to try (e.g. from a broad phase), any order.
-/// Ties (distances within 1e-12 (L + d), L the longest edge of the facets compared, d the
-/// distance) go to Face over Edge over Vertex, then to the lower facet index.
-/// Throws std::invalid_argument if candidates is empty, nodes_per_facet is not 3 or 4, sizes
-/// are inconsistent, x_s is not finite or a candidate facet is degenerate (the message names
-/// it); std::out_of_range on a candidate or node index out of range.
-ClosestFacet closest_facet(const Eigen::Vector3d& x_s, std::span<const std::int32_t> candidates,
-                           std::span<const std::int32_t> facets, int nodes_per_facet,
-                           std::span<const double> coords);
-
-/// The nodes of row `facet` of `facets` as a 3 × nodes_per_facet matrix (arguments as in
-/// closest_facet; throws std::out_of_range on an index out of range).
-NodeCoordinates gather_facet(std::int32_t facet, std::span<const std::int32_t> facets,
-                             int nodes_per_facet, std::span<const double> coords);
+extern template SurfaceContact node_to_surface<3>(const SlaveNodes&, const SlaveWeights&,
+                                                  const FacetNodes<3>&, const FacetProjection&,
+                                                  double, double, double, double, double);
+extern template SurfaceContact node_to_surface<4>(const SlaveNodes&, const SlaveWeights&,
+                                                  const FacetNodes<4>&, const FacetProjection&,
+                                                  double, double, double, double, double);
 
 }  // namespace hypercontact

@@ -32,9 +32,8 @@ inline ObstacleProjection augmented_projection(const ObstacleProjection& p, doub
 /// so that p_N = ⟨λ − ε_N g⟩, r = A ε_N g̃ n and K = A ε_N (n ⊗ n + g̃ ∂n/∂x) with
 /// g̃ = g − λ/ε_N (λ is held fixed during a Newton solve; its Uzawa update is the caller's).
 /// Throws as normal_penalty.
-RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x,
-                                    double area, double eps_n, double lambda = 0.0,
-                                    double smoothing = 0.0);
+RigidContactNode rigid_contact_node(const Obstacle& obstacle, const Eigen::Vector3d& x, double area,
+                                    double eps_n, double lambda = 0.0, double smoothing = 0.0);
 
 /// rigid_contact_node of every slave node i (x: n × 3 row-major, area: n, multipliers: n or
 /// empty, smoothing: the band δ of normal_penalty, 0: none).
@@ -49,12 +48,12 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
 /// Slave nodes against one rigid obstacle.
 struct RigidContactInput {
   Obstacle obstacle;
-  std::span<const double> x;            ///< n × 3 current coordinates, row-major
-  std::span<const double> area;         ///< n tributary areas A_i ≥ 0
-  std::span<const std::int32_t> dofs;   ///< n × 3 process-local dofs, −1: constrained
-  double eps_n;                         ///< penalty ε_N > 0
+  std::span<const double> x;                 ///< n × 3 current coordinates, row-major
+  std::span<const double> area;              ///< n tributary areas A_i ≥ 0
+  std::span<const std::int32_t> dofs;        ///< n × 3 process-local dofs, −1: constrained
+  double eps_n;                              ///< penalty ε_N > 0
   std::span<const double> multipliers = {};  ///< n augmented-Lagrangian λ_i ≥ 0, or empty
-  double smoothing = 0.0;               ///< band δ ≥ 0 of the smoothed law (penetration.hpp)
+  double smoothing = 0.0;  ///< band δ ≥ 0 of the smoothed law (penetration.hpp)
 };
 
 /// Per-node and total output of an evaluation.

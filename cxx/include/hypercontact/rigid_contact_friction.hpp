@@ -32,8 +32,8 @@ struct RigidFrictionEvaluation : RigidContactState {
   std::vector<double> slip_increment;  ///< Δs_i (n × 3) of this step
   std::vector<double> dissipation;     ///< D_i = μ p_N |Δs_i| A_i of this step
   std::vector<std::int8_t> state;      ///< StickSlip: 0 open, 1 stick, 2 slip
-  Eigen::Vector3d friction_force;      ///< tangential force of the obstacle on the body, −Σ r_T,i
-  Eigen::Vector3d total_force;         ///< force + friction_force
+  Eigen::Vector3d friction_force;  ///< tangential force of the obstacle on the body, −Σ r_T,i
+  Eigen::Vector3d total_force;     ///< force + friction_force
   /// Per active node: rows = columns = dofs(i, :), R = r_N,i + r_T,i and K = K_N,i + K_T,i
   /// (with_normal; else r_T,i and K_T,i), process-local numbering.
   ContactElements elements;

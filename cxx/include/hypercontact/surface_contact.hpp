@@ -6,17 +6,11 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <hypercontact/contact_elements.hpp>
+#include <hypercontact/narrow_phase.hpp>
 #include <span>
 #include <vector>
 
 namespace hypercontact {
-
-/// How one slave point was paired.
-enum class PairingStatus : std::int32_t {
-  NoCandidate = 0,  ///< the broad phase found no master facet near the point
-  OffSurface = 1,   ///< closest point on the master surface's boundary, point outside its extent
-  Paired = 2,       ///< projected onto a face, an inner edge or an inner vertex
-};
 
 /// Per slave point and total output of one evaluation.
 struct SurfaceContactState {
@@ -27,8 +21,8 @@ struct SurfaceContactState {
   std::vector<double> gap;            ///< signed gap g (> 0 open; 0 when not paired)
   std::vector<double> pressure;       ///< p_N = ε_N ⟨−g⟩ (augmented: ⟨λ_N − ε_N ĝ⟩)
   std::vector<double> normal;         ///< unit normal used for the sign of g, 3 per point
-  Eigen::Vector3d force;              ///< force of the master on the slave body, −Σ r (slave part)
-  std::int32_t num_closed;            ///< points with g ≤ 0 (augmented: with p_N > 0)
+  Eigen::Vector3d force;    ///< force of the master on the slave body, −Σ r (slave part)
+  std::int32_t num_closed;  ///< points with g ≤ 0 (augmented: with p_N > 0)
 };
 
 /// Geometry and numbering of one slave surface against one master surface.
@@ -37,9 +31,10 @@ struct SurfaceContactState {
 /// point_nodes, point_weights: np × 4 — slave point p is x_p = Σ_i M_pi x_{node_pi} over the
 ///   entries with node ≥ 0 (nodal integration: one node with M = 1; Gauss points: 4 nodes);
 /// point_area: np — the point's weight w_p (nodal area or det J × Gauss weight, reference);
-/// facets: nf × 4 master quadrilaterals, nodes counter-clockwise seen from outside the master;
-/// edge_neighbour: nf × 4 — the master facet across edge k (node k → k+1) of facet f, −1 on the
-///   master surface's boundary;
+/// facets: nf master facets of nodes_per_facet nodes each (3: triangles, 4: quadrilaterals),
+///   nodes counter-clockwise seen from outside the master (narrow_phase.hpp);
+/// edge_neighbour: nf × nodes_per_facet — the master facet across edge k (node k → k+1) of
+///   facet f, −1 on the master surface's boundary;
 /// offsets (np + 1), candidates: the broad phase's candidate facets of each point (CSR);
 /// dofs: nn × 3 global PETSc indices, −1 for a constrained dof (skipped: Dirichlet rows and
 ///   columns stay exact).
@@ -48,7 +43,7 @@ struct SurfaceContactInput {
   std::span<const std::int32_t> point_nodes;
   std::span<const double> point_weights;
   std::span<const double> point_area;
-  std::span<const std::int32_t> facets;
+  FacetConnectivity facets;
   std::span<const std::int32_t> edge_neighbour;
   std::span<const std::int32_t> offsets;
   std::span<const std::int32_t> candidates;
@@ -70,16 +65,12 @@ struct SurfaceContactEvaluation : SurfaceContactState {
   ContactElements elements;
 };
 
-/// Evaluates every slave point once: closest point over its candidate facets (ties: face before
-/// edge before vertex, then the lower facet index); the gap g = (x_s − x_M)·n with n the facet
-/// normal at the closest point of the winning facet; a point whose closest point is on the master
-/// surface's boundary is OffSurface (open) unless it lies within the facet's extent
-/// (|r − (r·n) n| ≤ 1e-8 |r|, r = x_s − x_M) or overhangs the rim by at most 0.05 in ξ (2.5 % of
-/// the facet; then projected onto the facet continued beyond its edge, as a face point). A closed point
-/// (g ≤ touch, touch = 1e-10 × the facet's diagonal; with λ_N > 0 or δ > 0: p_N > 0, see
-/// node_to_surface) keeps the element residual and tangent of node_to_surface (energy ½ w ε_N g²
-/// with all curvature terms). Throws std::invalid_argument on inconsistent sizes or indices out
-/// of range, and as node_to_surface.
+/// Evaluates every slave point once: its pairing by the narrow phase (NarrowPhase::pair: closest
+/// candidate facet, gap and its sign, the rim, the touch tolerance) and, if it is Paired and
+/// closed (g ≤ touch; with λ_N > 0 or δ > 0: p_N > 0, see node_to_surface), the residual and
+/// tangent of node_to_surface (energy ½ w ε_N g² with all curvature terms) against that facet.
+/// Throws std::invalid_argument on inconsistent sizes or indices out of range, and as
+/// node_to_surface.
 SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in);
 
 }  // namespace hypercontact

@@ -10,7 +10,8 @@ namespace hypercontact {
 /// Per slave point and total output: the pairing and normal part as SurfaceContactState, plus
 /// the friction of each point (zero for a point that is not closed).
 struct SurfaceFrictionState : SurfaceContactState {
-  std::vector<double> traction;        ///< t (3 per point): the next t_old; the master pulls the slave by −t
+  std::vector<double>
+      traction;  ///< t (3 per point): the next t_old; the master pulls the slave by −t
   std::vector<double> slip_increment;  ///< Δs (3 per point)
   std::vector<double> dissipation;     ///< D = w t·Δs ≥ 0 (per point, not per area)
   std::vector<std::int32_t> stick;     ///< StickSlip: 0 open, 1 stick, 2 slip

@@ -1,11 +1,14 @@
-// Penalty-regularised Coulomb friction of a slave point against a deformable master facet:
-// return mapping (SPEC §2, eqs. 16–18, 27–28) in Cartesian components, with the history carried
-// as a material point of the master surface.
+// Penalty-regularised Coulomb friction of a slave point against a deformable master facet: the
+// return mapping of the trial traction onto the Coulomb cone in Cartesian components, with the
+// history carried as a material point of the master surface. The node counts of the current and
+// the old facet are template parameters (fixed-size types, nothing on the heap); the overloads
+// on NodeCoordinates dispatch on them at run time.
 #pragma once
 
 #include <Eigen/Core>
 #include <hypercontact/coulomb_friction.hpp>  // StickSlip, return_map
 #include <hypercontact/facet_projection.hpp>
+#include <hypercontact/surface_element_types.hpp>
 
 namespace hypercontact {
 
@@ -14,9 +17,9 @@ namespace hypercontact {
 struct SurfaceFriction {
   /// R, 3 (ns + nm + no) entries: the ns slave nodes, the nm nodes of the current facet, the no
   /// nodes of the old facet (always zero: no force acts there), each as (x, y, z).
-  Eigen::VectorXd residual;
+  FrictionVector residual;
   /// K = ∂R/∂x, square, same ordering (columns of the old facet included); not symmetric.
-  Eigen::MatrixXd tangent;
+  FrictionMatrix tangent;
   Eigen::Vector3d traction;        ///< t, tangential traction per unit area: the next t_old
   Eigen::Vector3d slip_increment;  ///< Δs = (t_trial − t)/ε_T: (|t_trial| − μ p_N)/ε_T m in slip
   double dissipation;              ///< D = μ p_N |Δs| w = w t·Δs ≥ 0
@@ -72,6 +75,13 @@ struct SurfaceFriction {
 /// Throws std::invalid_argument if w < 0, ε_N ≤ 0, ε_T ≤ 0, μ < 0, λ_N < 0, sizes are
 /// inconsistent, any input is not finite, the projection is inconsistent or a facet is
 /// degenerate; std::runtime_error as node_to_surface at a centre of curvature. Never returns NaN.
+template <int NM, int NO>
+requires FacetNodeCount<NM> && FacetNodeCount<NO> SurfaceFriction surface_friction(
+    const SlaveNodes& slave, const SlaveWeights& weights, const FacetNodes<NM>& master,
+    const FacetProjection& projection, const FacetNodes<NO>& old_master,
+    const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old, double w, double eps_n,
+    double eps_t, double mu, double lambda = 0.0, double smoothing = 0.0);
+/// The same for a slave point and facets of run-time sizes (ns ≤ 4, 3 or 4 facet nodes).
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
@@ -84,5 +94,16 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
                                  const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old,
                                  double w, double eps_n, double eps_t, double mu,
                                  double lambda = 0.0, double smoothing = 0.0);
+
+#define HYPERCONTACT_SURFACE_FRICTION(NM, NO)                                                \
+  extern template SurfaceFriction surface_friction<NM, NO>(                                  \
+      const SlaveNodes&, const SlaveWeights&, const FacetNodes<NM>&, const FacetProjection&, \
+      const FacetNodes<NO>&, const Eigen::Vector2d&, const Eigen::Vector3d&, double, double, \
+      double, double, double, double);
+HYPERCONTACT_SURFACE_FRICTION(3, 3)
+HYPERCONTACT_SURFACE_FRICTION(3, 4)
+HYPERCONTACT_SURFACE_FRICTION(4, 3)
+HYPERCONTACT_SURFACE_FRICTION(4, 4)
+#undef HYPERCONTACT_SURFACE_FRICTION
 
 }  // namespace hypercontact
