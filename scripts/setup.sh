@@ -37,7 +37,7 @@ cmake --build build -j2 >> build.log 2>&1 || { cat build.log; exit 1; }
 if [ ! -x .venv/bin/python ]; then
   /usr/bin/python3 -m venv --system-site-packages .venv
 fi
-if ! .venv/bin/python -c "import hypercontact._cpp, hypercontact.forms" 2>/dev/null; then
+if ! .venv/bin/python -c "import hypercontact._cpp, hypercontact.forms, hypercontact.scenes" 2>/dev/null; then
   .venv/bin/pip install -q --no-build-isolation --no-deps -e .
 fi
 echo "setup: ready (.venv/bin/hypercontact)"
