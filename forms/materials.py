@@ -18,6 +18,8 @@ so resist the inversion of elements. All three have Ψ0(1) = Ψ0'(1) = 0 and
 """
 import ufl
 
+from .registry import LAWS as REGISTRY
+
 
 def _isochoric_invariants(F):
     """Return (J, Ī1, Ī2_usual, Ī2_paper) of the isochoric part of F.
@@ -95,22 +97,17 @@ def neo_hookean(F, mu, K, volumetric="quadratic"):
 
 
 def shear_modulus(law, params):
-    """Small-strain shear modulus of a built-in law (used for reports)."""
-    if law == "mooney_rivlin":
-        a1, a2 = params["alpha1"], params["alpha2"]
-        return 2 * (a1 + a2) if params.get("i2", "usual") == "usual" else 2 * a1 + 8 * a2
-    if law == "neo_hookean":
-        return params["mu"]
-    return None
+    """Small-strain shear modulus of a built-in law (used for reports); None
+    for any other law."""
+    if law not in REGISTRY:
+        return None
+    return REGISTRY[law].shear_modulus(REGISTRY[law].with_defaults(params))[0]
 
 
 #: Built-in laws by scene name: function and its parameter names with defaults
-#: (None = required).
-LAWS = {
-    "mooney_rivlin": (mooney_rivlin, {"alpha1": None, "alpha2": None, "K": None, "i2": "usual",
-                                      "volumetric": "quadratic"}),
-    "neo_hookean": (neo_hookean, {"mu": None, "K": None, "volumetric": "quadratic"}),
-}
+#: (None = required), the parameters from the registry (forms/registry.py).
+LAWS = {name: (law, dict(REGISTRY[name].parameters))
+        for name, law in (("mooney_rivlin", mooney_rivlin), ("neo_hookean", neo_hookean))}
 
 #: Isochoric parts of the built-in laws (their volumetric part is Ψ0(J),
 #: split_volumetric): what the selective reduced integration and mixed

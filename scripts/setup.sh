@@ -13,6 +13,8 @@ PACKAGES=(
   libnanoflann-dev libeigen3-dev petsc-dev libopenmpi-dev pybind11-dev libgtest-dev libdolfinx-dev
   # Python: FEniCSx 0.5.2 (with ufl, basix, ffcx, cffi), PETSc and MPI bindings, pybind11 for the extension
   python3-dolfinx python3-petsc4py python3-mpi4py python3-pybind11 python3-numpy
+  # the typed scene schema (hypercontact.scene: pydantic 1.10)
+  python3-pydantic
   # a run: meshes, results and pictures
   python3-gmsh python3-meshio python3-h5py python3-matplotlib python3-scipy python3-pil
   # MPI runs (mpirun), the BLAS, tests and the virtual environment
@@ -35,7 +37,7 @@ cmake --build build -j2 >> build.log 2>&1 || { cat build.log; exit 1; }
 if [ ! -x .venv/bin/python ]; then
   /usr/bin/python3 -m venv --system-site-packages .venv
 fi
-if ! .venv/bin/python -c "import hypercontact._cpp, hypercontact.forms" 2>/dev/null; then
+if ! .venv/bin/python -c "import hypercontact._cpp, hypercontact.forms, hypercontact.scenes" 2>/dev/null; then
   .venv/bin/pip install -q --no-build-isolation --no-deps -e .
 fi
 echo "setup: ready (.venv/bin/hypercontact)"

@@ -333,7 +333,7 @@ def mutate(rng, data, notes):
         solver = data.setdefault("solver", {})
         if not isinstance(solver, dict):
             return mutate(rng, data, notes)
-        # Only what scene.py can check without running PETSc: option names,
+        # Only what the scene can check without running PETSc: option names,
         # value types, the type-selecting options. (A wrong value of any other
         # option, e.g. mat_mumps_icntl_14 = true, fails inside PETSc: see
         # test_petsc_option_value_errors_are_not_caught_yet.)
@@ -508,7 +508,7 @@ def test_fuzz_summary(capsys):
 
 # ------------------------------------------------------ regression cases
 # Each was found by the fuzzer (or next to what it found); the comment says
-# what happened before scene.py checked it.
+# what happened before the scene checked it.
 
 NAN, INF = float("nan"), float("inf")
 
@@ -653,15 +653,8 @@ def test_scene_that_is_not_utf8_names_the_file(tmp_path, capsys):
     assert_one_paragraph(err, 2)
 
 
-def test_builtin_laws_match_the_materials():
-    from hypercontact.forms import materials
-
-    assert {name: dict(expected) for name, (_, expected) in materials.LAWS.items()} == scene.BUILTIN_LAWS
-    assert set(materials.ISOCHORIC) == set(scene.BUILTIN_LAWS)
-
-
 def test_petsc_option_value_errors_get_a_message(files, tmp_path, capsys):
-    """A wrong value of a PETSc option that scene.py cannot know (here MUMPS's
+    """A wrong value of a PETSc option that the scene cannot know (here MUMPS's
     ICNTL(14)) fails inside PETSc's solve: a message, not a traceback."""
     path = files / "icntl.toml"
     path.write_text(dumps(edited("punch", {"solver.petsc": {"mat_mumps_icntl_14": True}})))

@@ -2,7 +2,11 @@
 
     hypercontact run SCENE [--out DIR] [--set KEY=VALUE ...] [--np N] [--resume]
     hypercontact check SCENE [--set KEY=VALUE ...]
-    hypercontact scenes
+    hypercontact scenes          (or: hypercontact list)
+    hypercontact study STUDY [--out DIR]
+
+SCENE and STUDY are files or the names of built-in ones (the package data
+hypercontact.scenes: the repository's scenes/ and scenes/studies/).
 
 Exit codes: 0 completed, 2 invalid scene, 3 a load step failed (converged
 steps are on disk), 130 interrupted (Ctrl-C; converged steps are on disk,
@@ -14,13 +18,11 @@ import os
 import shutil
 import signal
 import sys
-import tomllib
-from pathlib import Path
 
 from . import scene as scene_mod
 
-#: The built-in scenes (the repository's scenes/ folder).
-SCENES = Path(__file__).resolve().parents[2] / "scenes"
+#: The built-in scenes (installed with the package; the repository's scenes/ folder).
+SCENES = scene_mod.SCENES
 
 
 class Console:
@@ -68,7 +70,7 @@ def _parser():
     sub = p.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scene")
     check = sub.add_parser("check", help="validate a scene without running it")
-    sub.add_parser("scenes", help="list the built-in scenes")
+    sub.add_parser("scenes", aliases=["list"], help="list the built-in scenes")
     study = sub.add_parser("study", help="run a sweep of settings: error against a reference vs wall time")
     study.add_argument("study", help="a study TOML file or a built-in study name (scenes/studies/)")
     study.add_argument("--out", default=None, help="results folder (default results/study_NAME)")
@@ -83,23 +85,11 @@ def _parser():
     return p
 
 
-def _scene_path(name):
-    path = Path(name)
-    try:
-        if not path.exists() and (SCENES / f"{name}.toml").is_file():
-            return SCENES / f"{name}.toml"
-    except OSError:  # e.g. a name too long for the file system: scene.load says so
-        pass
-    return path
-
-
 def _study(args):
     console = console_logging(Console())
     from . import study as study_mod
 
-    path = Path(args.study)
-    if not path.exists() and (SCENES / "studies" / f"{args.study}.toml").is_file():
-        path = SCENES / "studies" / f"{args.study}.toml"
+    path = scene_mod.study_path(args.study)
     out = args.out or f"results/study_{path.stem}"
     try:
         _, ref = study_mod.run_study(path, out, log=console.say)
@@ -111,12 +101,8 @@ def _study(args):
 
 
 def list_scenes(out=sys.stdout):
-    for path in sorted(SCENES.glob("*.toml")):
-        try:
-            title = tomllib.loads(path.read_text()).get("title", "")
-        except tomllib.TOMLDecodeError:
-            title = "(not valid TOML)"
-        print(f"{path.stem:24s} {title}", file=out)
+    for name, title in scene_mod.builtin.titles():
+        print(f"{name:24s} {title}", file=out)
 
 
 def _under_mpirun(argv, n):
@@ -142,7 +128,7 @@ def _under_mpirun(argv, n):
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
     args = _parser().parse_args(argv)
-    if args.command == "scenes":
+    if args.command in ("scenes", "list"):
         list_scenes()
         return 0
     if args.command == "study":
@@ -156,7 +142,7 @@ def main(argv=None):
     console = Console(comm.rank)
     err = sys.stderr if comm.rank == 0 else open(os.devnull, "w")
     try:
-        sc = scene_mod.load(_scene_path(args.scene), args.overrides)
+        sc = scene_mod.load(scene_mod.scene_path(args.scene), args.overrides)
         if args.command == "check":
             if comm.rank == 0:
                 print(f"{args.scene}: valid")

@@ -69,7 +69,8 @@ def _fail(key, message):
 
 
 def load_study(path):
-    """The validated study dict (scene path resolved)."""
+    """The validated study dict: the scene path resolved, the scene with the
+    study's overrides validated (``base_scene``, the plain dict)."""
     path = Path(path)
     if not path.is_file():
         raise SceneError(f"study file '{path}' does not exist")
@@ -106,18 +107,19 @@ def load_study(path):
     for i, s in enumerate(data.get("sweep", [])):
         if set(s) != {"key", "values"} or not isinstance(s["values"], list) or not s["values"]:
             _fail(f"sweep[{i}]", "expected key = \"a.scene.key\" and a non-empty values list")
-    from .cli import SCENES
-
     scene_path = Path(data["scene"])
     if not scene_path.is_absolute():
-        scene_path = (path.parent / scene_path) if (path.parent / scene_path).is_file() else SCENES / f"{data['scene']}.toml"
+        scene_path = (path.parent / scene_path) if (path.parent / scene_path).is_file() else \
+            scene_mod.SCENES / f"{data['scene']}.toml"
     if not scene_path.is_file():
         _fail("scene", f"no scene file or built-in scene {data['scene']!r}")
     data["scene_path"] = str(scene_path)
     data.setdefault("set", [])
     data.setdefault("title", path.stem)
-    if field:  # the scene must be one the reference applies to: checked before any case runs
-        check_field_reference(field, scene_mod.load(scene_path, data["set"]))
+    # the scene with the study's overrides, validated once, before any case runs
+    data["base_scene"] = scene_mod.load(scene_path, data["set"])
+    if field:  # the scene must be one the reference applies to
+        check_field_reference(field, data["base_scene"])
     return data
 
 
@@ -302,7 +304,7 @@ def run_study(study_path, out_dir, comm=None, log=print):
     field = field_reference(study["reference"])
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    base = scene_mod.load(study["scene_path"], study["set"])
+    base = study["base_scene"]
     results = []
     for k, case in enumerate(cases_of(study)):
         sc = scene_mod.load(study["scene_path"], study["set"] + case + ["output.xdmf=false"])

@@ -1,0 +1,91 @@
+"""The built-in mesh builders, listed once: where each may be used, the
+surfaces it names, how many hexahedra it makes, and what its keys must
+satisfy for the mesh not to degenerate.
+
+``[mesh]`` is built by "box", "shell_octant" or read from a "file";
+``[[body]]`` entries by "box", "shell_octant" or "hemisphere".
+"""
+from dataclasses import dataclass
+
+from .errors import Invalid
+from .fields import MAX_CELLS, MAX_LENGTH
+
+
+@dataclass(frozen=True)
+class Builder:
+    """One builder. ``surfaces``: surface name → the axis of its normal if it
+    is a plane x, y or z = const, None if curved; None for a mesh file
+    (its surfaces are known once it is read)."""
+
+    name: str
+    surfaces: dict = None
+    main: bool = False  #: may build [mesh]
+    body: bool = False  #: may build a [[body]]
+    graded: bool = False  #: takes grading
+
+    def cells(self, spec):
+        """Number of hexahedra of the builder's keys ``spec``."""
+        n, m = spec["n"], spec["m"]
+        return 3 * (n // 2) ** 2 * m if self.name == "shell_octant" else n * n * m
+
+
+BUILDERS = {
+    "box": Builder("box", {"xmin": 0, "xmax": 0, "ymin": 1, "ymax": 1, "zmin": 2, "zmax": 2},
+                   main=True, body=True, graded=True),
+    "shell_octant": Builder("shell_octant", {"inner": None, "outer": None, "xmin": 0, "ymin": 1, "zmin": 2},
+                            main=True, body=True),
+    "hemisphere": Builder("hemisphere", {"curved": None, "flat": 2, "xmin": 0, "ymin": 1}, body=True,
+                          graded=True),
+    "file": Builder("file", main=True),
+}
+MESH_BUILDERS = tuple(name for name, b in BUILDERS.items() if b.main)
+BODY_BUILDERS = tuple(name for name, b in BUILDERS.items() if b.body)
+#: The surfaces of each builder that names them.
+BUILDER_SURFACES = {name: b.surfaces for name, b in BUILDERS.items() if b.surfaces is not None}
+
+
+def choices(names):
+    """'"a", "b" or "c"'."""
+    *first, last = (f'"{n}"' for n in names)
+    return f"{', '.join(first)} or {last}" if first else last
+
+
+def check_shape(spec):
+    """Invalid (naming the key) if a built-in builder's keys ``spec`` would
+    make a degenerate or oversized mesh."""
+    builder = BUILDERS[spec["builder"]]
+    if builder.surfaces is None:
+        return
+    if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
+        raise Invalid(f"grading applies to the {' and '.join(n for n, b in BUILDERS.items() if b.graded)} "
+                      f"builders, not {builder.name!r}", "grading")
+    {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere}[builder.name](spec)
+    cells = builder.cells(spec)
+    if cells > MAX_CELLS:
+        raise Invalid(f"n = {spec['n']}, m = {spec['m']} make {cells:.3g} hexahedra, more than "
+                      f"{MAX_CELLS:.0e}", "n")
+
+
+def _check_box(spec):
+    size = spec["size"]
+    if min(size) < 1e-4 * max(size):
+        raise Invalid(f"the smallest length must be at least 1e-4 × the largest (the surfaces are told apart "
+                      f"by a relative tolerance), found {size}", "size")
+    if any(abs(o + s) > MAX_LENGTH for o, s in zip(spec["origin"], size)):
+        raise Invalid(f"the box reaches beyond coordinates of {MAX_LENGTH:g} (origin {spec['origin']})", "size")
+
+
+def _check_shell(spec):
+    if spec["n"] % 2:
+        raise Invalid(f"the shell_octant builder needs an even n (n/2 elements on each of the three patches' "
+                      f"edges), found {spec['n']}", "n")
+    r, t = spec["inner_radius"], spec["thickness"]
+    if t < 1e-6 * r or r < 1e-6 * t:
+        raise Invalid(f"expected thickness and inner_radius within a factor 1e6 of each other (the mesh "
+                      f"degenerates otherwise), found thickness {t}, inner_radius {r}", "thickness")
+
+
+def _check_hemisphere(spec):
+    if min(spec["grading"]) < 1.0:
+        raise Invalid(f"the hemisphere's grading clusters cells towards its pole only: expected numbers >= 1, "
+                      f"found {spec['grading']}", "grading")

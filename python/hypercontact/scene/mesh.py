@@ -1,0 +1,72 @@
+"""[mesh] (the main body) and [[body]] (further bodies, each with its own
+material): a built-in builder and its keys, or a mesh file."""
+import re
+
+from pydantic import root_validator, validator
+
+from .base import SceneModel
+from .builders import BODY_BUILDERS, MESH_BUILDERS, check_shape, choices
+from .errors import Invalid
+from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, integer,
+                     number, one_of, string, vector)
+from .material import Material
+from .paths import existing_file
+
+SIZE = vector(ALL_POSITIVE, COORDINATES)
+#: A body's name prefixes its surfaces ("punch.zmin").
+BODY_NAME = (lambda x: re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", x) is not None,
+             "a name of letters, digits and _ (it prefixes the body's surfaces)")
+
+
+class Mesh(SceneModel):
+    builder: string(one_of(MESH_BUILDERS, choices(MESH_BUILDERS))) = "box"
+    inner_radius: number(POSITIVE, LENGTH) = 95.0
+    thickness: number(POSITIVE, LENGTH) = 1.0
+    size: SIZE = [1.0, 1.0, 1.0]
+    origin: vector(COORDINATES) = [0.0, 0.0, 0.0]
+    n: integer(POSITIVE) = 4
+    m: integer(POSITIVE) = 4
+    grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    file: string(FILE_NAME) = ""
+    #: random node displacements of this fraction of the smallest cell's size (fixed per node):
+    #: a check that results move continuously with the data, not a modelling feature
+    perturbation: number(NON_NEGATIVE, (lambda x: x <= 1e-2, "at most 0.01")) = 0.0
+
+    @root_validator(skip_on_failure=True)
+    def file_or_builder(cls, values):
+        """builder = "file" reads an existing file (its path made absolute);
+        the other builders make a mesh that must not degenerate."""
+        if values["builder"] == "file":
+            if not values["file"]:
+                raise Invalid('missing: builder = "file" needs a mesh file path', "file")
+            values["file"] = str(existing_file(values["file"], "mesh file", "file"))
+        elif values["file"]:
+            raise Invalid('given, but mesh.builder is not "file"', "file")
+        check_shape(values)
+        return values
+
+
+class Body(SceneModel):
+    name: string(BODY_NAME)
+    builder: string(one_of(BODY_BUILDERS, choices(BODY_BUILDERS))) = "box"
+    size: SIZE = [1.0, 1.0, 1.0]
+    origin: vector(COORDINATES) = [0.0, 0.0, 0.0]
+    n: integer(POSITIVE) = 4
+    m: integer(POSITIVE) = 4
+    inner_radius: number(POSITIVE, LENGTH) = 95.0
+    thickness: number(POSITIVE, LENGTH) = 1.0
+    radius: number(POSITIVE, LENGTH) = 1.0
+    grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    material: Material
+
+    @validator("name")
+    def not_the_main_body(cls, name):
+        if name == "body":
+            raise Invalid("the name 'body' is taken by the [mesh] body")
+        return name
+
+    @root_validator(skip_on_failure=True)
+    def sane_shape(cls, values):
+        check_shape(values)
+        return values
+
