@@ -18,18 +18,16 @@ import ufl
 from mpi4py import MPI
 
 from .. import _dolfinx as dfx
+from ..forms.registry import LAWS
 
 
 def p_wave_modulus(law, params):
-    """K + 4/3 μ of a built-in law at small strain (every volumetric energy,
-    materials.VOLUMETRIC, has Ψ0''(1) = K: the same M whichever it is)."""
-    if law == "neo_hookean":
-        mu = params["mu"]
-    elif law == "mooney_rivlin":
-        a1, a2 = params["alpha1"], params["alpha2"]
-        mu = 2.0 * (a1 + a2) if params.get("i2", "usual") == "usual" else 2.0 * a1 + 8.0 * a2
-    else:
+    """K + 4/3 μ0 of a built-in law at small strain, μ0 from the law registry
+    (every volumetric energy, materials.VOLUMETRIC, has Ψ0''(1) = K: the same
+    M whichever it is)."""
+    if law not in LAWS:
         raise ValueError(f"automatic penalty: no small-strain modulus for law {law!r}")
+    mu, _ = LAWS[law].shear_modulus(LAWS[law].with_defaults(params))
     return params["K"] + 4.0 / 3.0 * mu
 
 
