@@ -6,6 +6,7 @@ import re
 
 import numpy as np
 import pytest
+import ufl
 from conftest import ROOT, quiet
 from mpi4py import MPI
 
@@ -66,6 +67,18 @@ def test_user_law_that_raises(tmp_path, capsys):
     assert cli.main(["check", str(path)]) == 0  # the scene is well-formed; the law fails when built
     assert cli.main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
     assert "c must be positive" in capsys.readouterr().err
+
+
+def test_driver_law_with_a_split_formulation_names_the_key():
+    """A law a driver script passes has no isochoric part for sri or mixed to
+    split off: refused before anything is built on it; a law name the scene
+    cannot resolve (neither built-in nor python:) needs such a driver law."""
+    sc = scene.load(PUNCH, ["mesh.n=2", "mesh.m=1", "discretisation.formulation=sri"])
+    with pytest.raises(scene.SceneError, match=r"'discretisation\.formulation': 'sri' .* driver script's law"):
+        Simulation(sc, MPI.COMM_SELF, law=lambda F, K: K * (ufl.det(F) - 1) ** 2, log=quiet)
+    sc = scene.load(PUNCH, ["mesh.n=2", "mesh.m=1", "material.law=gent", "material.parameters={}"])
+    with pytest.raises(scene.SceneError, match=r"'material\.law': .* found 'gent' .* driver script"):
+        Simulation(sc, MPI.COMM_SELF, log=quiet)
 
 
 def fail_at(step, attempts=None):

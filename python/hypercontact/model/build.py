@@ -21,9 +21,6 @@ def build_body(scene, comm):
     """The mesh with its named surfaces and regions."""
     mesh = scene["mesh"]
     if scene["body"] or any(g != 1.0 for g in mesh["grading"]):
-        names = ["body"] + [b["name"] for b in scene["body"]]
-        if "body" in names[1:]:
-            raise SceneError("scene key 'body': the name 'body' is taken by the [mesh] body")
         return geometry.build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in scene["body"]])
     if mesh["builder"] == "file":
         return geometry.read_msh(comm, mesh["file"])
@@ -53,11 +50,6 @@ class Model:
         self.constraints = Constraints(scene, self.w, space, self.body.facet_tags, self.tag, self.body.mesh)
         self.bcs = self.constraints.bcs
         R, J = self._with_loads(vol)
-        if scene["steps"]["control"] != "load":
-            for i, c in enumerate(scene["contact"]):
-                if c["obstacle"] == "surface":
-                    raise SceneError(f"scene key 'contact[{i}].obstacle': contact with a deformable surface needs "
-                                     "steps.control = \"load\" (continuation with it is not supported yet)")
         self.contacts, self.contact_settings = build_contacts(
             scene, self.V, self.body.facet_tags, self.tag, self.constraints.constrained, self.material_of)
         size = comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
