@@ -297,3 +297,19 @@ def build_bodies(comm, parts):
         quads, quad_values = np.zeros((0, 4), dtype=np.int64), np.zeros(0, dtype=np.int32)
     mesh, cell_tags, facet_tags = dfx.mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values)
     return Body(mesh, facet_tags, surfaces, cell_tags, regions)
+
+
+def build_mesh(comm, mesh, bodies=()):
+    """The Body of a scene's [mesh] spec and its [[body]] entries: the one
+    place a builder name becomes a mesh. Several bodies, or a graded box, are
+    built as arrays into one mesh (build_bodies); one body from a file, the
+    shell octant or a box through gmsh."""
+    if bodies or any(g != 1.0 for g in mesh["grading"]):
+        return build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in bodies])
+    if mesh["builder"] == "file":
+        return read_msh(comm, mesh["file"])
+    if mesh["builder"] == "shell_octant":
+        from .shell import build_shell_octant
+
+        return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
+    return build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])

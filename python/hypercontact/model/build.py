@@ -17,20 +17,6 @@ from .probes import Probe
 from .volume import build_volume
 
 
-def build_body(scene, comm):
-    """The mesh with its named surfaces and regions."""
-    mesh = scene["mesh"]
-    if scene["body"] or any(g != 1.0 for g in mesh["grading"]):
-        return geometry.build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in scene["body"]])
-    if mesh["builder"] == "file":
-        return geometry.read_msh(comm, mesh["file"])
-    if mesh["builder"] == "shell_octant":
-        from ..shell import build_shell_octant
-
-        return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
-    return geometry.build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
-
-
 class Model:
     """What a scene builds. ``law``: a Python ψ(F, **params) from a driver
     script in place of the scene's material law."""
@@ -39,7 +25,7 @@ class Model:
         """``map_mesh(body)``: moves the mesh nodes (body.mesh.geometry.x) before
         anything is built on it (e.g. a box bent into a shell)."""
         self.scene, self.comm = scene, comm
-        self.body = build_body(scene, comm)
+        self.body = geometry.build_mesh(comm, scene["mesh"], scene["body"])
         if map_mesh is not None:
             map_mesh(self.body)
         if scene["mesh"]["perturbation"] > 0:
