@@ -2,6 +2,8 @@
 near-nullspace. A scaled-down scaling check: the iterative solver gives the
 direct solver's answer, and its Krylov iteration count per Newton iteration
 does not grow by more than 1.5× from one uniform refinement to the next."""
+import csv
+import json
 import tomllib
 
 import pytest
@@ -41,3 +43,23 @@ def test_iterative_equals_direct_and_iterations_stay_bounded(tmp_path):
     _, _, its_fine = punch(16, 4, "iterative", tmp_path / "i16")
     print(f"Krylov iterations per Newton iteration: {its_coarse:.1f} (8x8x2), {its_fine:.1f} (16x16x4)")
     assert its_fine <= 1.5 * its_coarse
+
+
+def test_krylov_iterations_are_reported_per_step(tmp_path):
+    """curves.csv and summary.json carry each step's Krylov iterations: with
+    GMRES they add up to what SNES counted over the run; with MUMPS (KSP
+    preonly: one application of the factorisation per linear solve) they equal
+    the Newton iterations."""
+    for linear in ("iterative", "direct"):
+        out = tmp_path / linear
+        sim, writer, _ = punch(4, 1, linear, out)
+        with open(out / "curves.csv") as f:
+            rows = list(csv.DictReader(f))
+        krylov = [int(r["linear_iterations"]) for r in rows]
+        newton = [int(r["newton_iterations"]) for r in rows]
+        assert json.loads((out / "summary.json").read_text())["linear_iterations"] == krylov
+        assert sum(krylov) == sum(sim.linear_iterations)  # no failed attempt in this run
+        if linear == "direct":
+            assert krylov == newton
+        else:
+            assert all(k > 2 * n for k, n in zip(krylov, newton))  # GMRES iterates: more than one per solve

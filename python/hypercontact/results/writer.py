@@ -88,6 +88,8 @@ class ResultsWriter:
 
     def _columns(self):
         columns = ["step", "load_factor", "newton_iterations"]
+        if self.scene["steps"]["control"] == "load":  # continuation solves its bordered systems with LU
+            columns.append("linear_iterations")
         for c in self.contacts:
             columns += [f"{c.name}_{key}" for key in c.observable_names()]
         if any(c.frictional for c in self.contacts):
@@ -100,12 +102,14 @@ class ResultsWriter:
         return columns + list(self.pressures)
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
-                   active_set_changes=0, stick_slip_changes=0, augmentations=0):
+                   active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         step = len(self.steps) + 1
         fields = self.field_writer.compute(load_factor, step) if self.field_writer else None
         row = {"step": step, "load_factor": load_factor,
                "newton_iterations": iterations}
+        if linear_iterations is not None:
+            row["linear_iterations"] = linear_iterations
         friction = {"dissipation_step": 0.0, "dissipation": 0.0, "stick_slip_flips": 0}
         for c in self.contacts:
             for key, value in c.observables().items():
@@ -168,6 +172,7 @@ class ResultsWriter:
             "peak_memory_mb": {"max_rank": self.comm.allreduce(peak_mb, op=MPI.MAX),
                                "sum_ranks": self.comm.allreduce(peak_mb, op=MPI.SUM)},
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
+            "linear_iterations": [s.get("linear_iterations") for s in self.steps],
             "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
             "steps": self.steps, "failed_attempts": self.failed_attempts, "scene": self.scene,
         }

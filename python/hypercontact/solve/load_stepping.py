@@ -26,6 +26,7 @@ class LoadStepping:
         self.fail_attempt = fail_attempt
         self.newton = NewtonSolver(model, scene["solver"], timers)
         self.augmentations = 0
+        self.linear_its = 0  # Krylov iterations of the last attempt, all its Newton solves
 
     def update_pairing(self, fresh):
         """The model's pairing (Model.update_pairing); a new matrix goes to the solver."""
@@ -38,6 +39,7 @@ class LoadStepping:
     def attempt(self, step, lam, dlam, attempt):
         """One attempt at λ → λ + Δλ: (converged, Newton iterations, last norms, reason)."""
         self.model.set_load_factor(lam + dlam)
+        solves_before = len(self.newton.linear_iterations)
         self.update_pairing(fresh=True)
         ok, its, norms, reason = self.newton.solve()
         for _ in range(5 if ok else 0):
@@ -57,6 +59,7 @@ class LoadStepping:
         forced = self.fail_attempt is not None and bool(self.fail_attempt(step, lam, dlam, attempt))
         if self.model.comm.allreduce(forced, op=MPI.LOR) and ok:
             ok, reason = False, FORCED_FAILURE
+        self.linear_its = sum(self.newton.linear_iterations[solves_before:])
         return ok, its, norms, reason
 
     def failure_story(self, step, lam, dlam, attempt, reason, norms):
@@ -64,7 +67,7 @@ class LoadStepping:
         h = self.newton.history
         story = {"step": step, "attempt": attempt, "load_factor": lam, "dlam": dlam, "reason": reason,
                  "snes_reason": self.newton.last_snes_reason, "newton_iterations": self.newton.iterations(),
-                 "residual_norms": list(norms), "update_norms": list(h.update_norms),
+                 "linear_iterations": self.linear_its, "residual_norms": list(norms), "update_norms": list(h.update_norms),
                  "active_set_changes": h.active_set_changes(), "stick_slip_changes": h.stick_slip_changes(),
                  "augmentations": self.augmentations}
         story.update(h.flip_story(self.model.u, self.model.comm))

@@ -37,6 +37,7 @@ class Problem:
         self._volume_csr = None
         self._prepared_at = None  # the owned unknowns the contacts were last evaluated at
         self.pattern_builds = 0
+        self.linear_kind = None  # "direct" or "iterative", set by make_snes
 
     def rebuild_pattern(self):
         """A new matrix whose pattern is the volume pattern plus the

@@ -30,12 +30,15 @@ class Observers:
         with self.run.timers("output"):
             changes, flips = history.active_set_changes(), history.stick_slip_changes()
             row = self.writer.write_step(lam, its, norms, self.run.split(), history.last_active_set_change(),
-                                         history.update_norms, changes, flips, self.run.driver.augmentations)
+                                         history.update_norms, changes, flips, self.run.driver.augmentations,
+                                         self.run.driver.linear_its)
         for n, what in ((changes, "contact active set"), (flips, "stick/slip status")):
             if n >= self.steps["chatter_warning"]:
                 self.log(f"   the {what} changed in {n} Newton iterations of this step "
                          "(chattering): smaller steps or a backtracking line search damp it")
-        self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}  "
+        krylov = (f"  Krylov {row['linear_iterations']:4d}"
+                  if self.model.problem.linear_kind == "iterative" else "")
+        self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}{krylov}  "
                  f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(lam)}")
         self.run.save_checkpoint(self.writer, controller)
 
