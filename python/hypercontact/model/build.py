@@ -43,7 +43,20 @@ class Model:
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, timers)
         self.inversion_check = InversionCheck(self.u, scene["discretisation"]["quadrature_degree"])
         self.effects = describe_effects(scene, vol.description, self.contact_settings, self.constraints.num_moving,
-                                        dfx.num_global_dofs(self.w.function_space))
+                                        dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent)
+
+    @property
+    def symmetric_tangent(self):
+        """Whether the tangent is symmetric: the second derivative of an
+        energy — hyperelastic volume (every formulation), dead loads, Dirichlet
+        conditions (dolfinx zeroes rows and columns) and frictionless contact
+        with rigid obstacles (penalty or augmented Lagrangian with its
+        multipliers fixed in a solve: ∂n/∂x is symmetric on every obstacle).
+        Not with follower pressure, friction or a deformable master (whose
+        node-to-surface tangent is not symmetrised); tested entry by entry in
+        tests/behaviour/test_symmetric_tangent.py."""
+        return not self.scene["pressure"] and all(not (c.deformable or c.frictional)
+                                                  for c in self.contacts)
 
     def _with_loads(self, vol):
         """R + λ q and its tangent; q (kept for continuation) and the λ Constant."""

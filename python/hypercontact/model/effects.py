@@ -5,7 +5,7 @@ from ..solve.newton import linear_solver_options
 CONTROL = {"load": "load control", "arclength": "arc-length continuation", "displacement": "displacement control"}
 
 
-def describe_effects(scene, material, settings, num_moving, num_unknowns):
+def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False):
     """[material, contacts, automatic penalties, loads, control, linear solver]."""
     contacts = scene["contact"]
     n_rigid = sum(c["obstacle"] != "surface" for c in contacts)
@@ -28,7 +28,8 @@ def describe_effects(scene, material, settings, num_moving, num_unknowns):
             effects.append(f"{n} {what}{'s' if n > 1 else ''}")
     effects.append(CONTROL[scene["steps"]["control"]])
     if scene["steps"]["control"] == "load":
-        kind, _ = linear_solver_options(scene["solver"], num_unknowns)
-        effects.append("direct linear solver (MUMPS LU)" if kind == "direct" else
+        kind, options = linear_solver_options(scene["solver"], num_unknowns, symmetric)
+        direct = "LDLᵀ, symmetric tangent" if options["pc_type"] == "cholesky" else "LU"
+        effects.append(f"direct linear solver (MUMPS {direct})" if kind == "direct" else
                        "iterative linear solver (GMRES + GAMG, rigid-body near-nullspace)")
     return effects

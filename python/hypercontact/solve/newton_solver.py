@@ -20,7 +20,8 @@ class NewtonSolver:
     def __init__(self, model, solver, timers):
         self.model, self.timers = model, timers
         deformable = any(c.deformable for c in model.contacts)
-        self.snes = make_snes(model.problem, model.comm, solver, deformable=deformable)
+        self.snes = make_snes(model.problem, model.comm, solver, deformable=deformable,
+                              symmetric=model.symmetric_tangent)
         self.fallback = None
         if solver["linesearch"] == "auto" and model.contacts:
             self.fallback = "basic" if deformable else "bt"
