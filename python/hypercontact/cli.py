@@ -96,6 +96,10 @@ def _study(args):
     except (scene_mod.SceneError, ValueError) as e:
         print(f"hypercontact: {e}", file=sys.stderr)
         return 2
+    finally:  # as in main: the console's stream may close after the study (a caller's captured stdout)
+        from . import _dolfinx
+
+        _dolfinx.watch_jit_compilation(None)
     console.say(f"hypercontact: study written to {out} (study.csv, study.md, study.png)")
     return 0
 

@@ -22,7 +22,7 @@ def test_punch_builds_contact_and_load_control_only(out_dir):
     assert sim.q_form is None and sim.bordered is None and sim.snes is not None
     assert sim.timers.calls.get("contact", 0) > 0
     assert summary["effects"] == ["Mooney–Rivlin (usual I2)", "2 rigid contacts (frictionless)", "load control",
-                                  "direct linear solver (MUMPS LU)"]
+                                  "direct linear solver (MUMPS LDLᵀ, symmetric tangent)"]
     assert summary["calls"]["contact"] > 0 and summary["peak_memory_mb"]["max_rank"] > 0
 
 

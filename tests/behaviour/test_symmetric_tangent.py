@@ -47,3 +47,12 @@ def test_not_flagged_where_not_symmetric(tmp_path, name, overrides):
     symmetric, effects, asym = tangent_asymmetry(name, overrides, tmp_path)
     assert not symmetric and "direct linear solver (MUMPS LU)" in effects
     assert asym > 1e-6
+
+
+def test_the_scene_can_ask_for_lu(tmp_path):
+    """solver.petsc's pc_type wins over the automatic choice, and the effects say so."""
+    sc = scene.load(ROOT / "scenes" / "punch.toml", SMALL + ['solver.petsc={pc_type="lu"}', f"output.dir={tmp_path}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=quiet)
+    assert sim.model.symmetric_tangent and "direct linear solver (MUMPS LU)" in sim.effects
+    sim.run()
+    assert sim.snes.getKSP().getPC().getType() == "lu"

@@ -29,7 +29,8 @@ def describe_effects(scene, material, settings, num_moving, num_unknowns, symmet
     effects.append(CONTROL[scene["steps"]["control"]])
     if scene["steps"]["control"] == "load":
         kind, options = linear_solver_options(scene["solver"], num_unknowns, symmetric)
-        direct = "LDLᵀ, symmetric tangent" if options["pc_type"] == "cholesky" else "LU"
+        pc = {**options, **scene["solver"]["petsc"]}.get("pc_type")  # the scene's PETSc options win
+        direct = {"cholesky": "LDLᵀ, symmetric tangent", "lu": "LU"}.get(pc, pc)
         effects.append(f"direct linear solver (MUMPS {direct})" if kind == "direct" else
                        "iterative linear solver (GMRES + GAMG, rigid-body near-nullspace)")
     return effects

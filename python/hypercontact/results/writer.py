@@ -129,7 +129,7 @@ class ResultsWriter:
                            "active_set_changes": active_set_changes, "update_norms": list(update_norms),
                            "augmentations": augmentations})
         if self.rank0:
-            self._csv.writerow([row[k] for k in self.columns])
+            self._csv.writerow([row.get(k, "") for k in self.columns])  # a driver may give no Krylov count
             self._csv_file.flush()
         if self.field_writer:
             self.field_writer.write(load_factor, fields)
