@@ -219,8 +219,11 @@ TEST(Assembly, RigidFrictionPartIntoALocalArrayAndAMat) {
   Eigen::MatrixXd reference = Eigen::MatrixXd::Zero(size, size);
   for (std::size_t i = 0; i < 3; ++i) {
     const FrictionResult f = expected_friction(i);
-    for (int k = 0; k < 3; ++k)
-      if (dofs[3 * i + k] >= 0) EXPECT_NEAR(b[dofs[3 * i + k]], 1.0 + f.residual[k], 1e-14);
+    for (int k = 0; k < 3; ++k) {
+      if (dofs[3 * i + k] >= 0) {
+        EXPECT_NEAR(b[dofs[3 * i + k]], 1.0 + f.residual[k], 1e-14);
+      }
+    }
     EXPECT_EQ(e.state[i], static_cast<std::int8_t>(f.state));
     EXPECT_EQ(Eigen::Vector3d(&e.traction[3 * i]), f.traction);
     EXPECT_EQ(e.dissipation[i], f.dissipation);
