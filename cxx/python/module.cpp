@@ -11,10 +11,6 @@ void declare_rigid_contact_friction(pybind11::module_& m);
 void declare_surface_contact(pybind11::module_& m);
 void declare_surface_contact_friction(pybind11::module_& m);
 void declare_assembly(pybind11::module_& m);
-void declare_assemble_rigid(pybind11::module_& m);
-void declare_assemble_friction(pybind11::module_& m);
-void declare_assemble_surface(pybind11::module_& m);
-void declare_assemble_surface_friction(pybind11::module_& m);
 }  // namespace hypercontact::python
 
 PYBIND11_MODULE(_cpp, m) {
@@ -29,9 +25,4 @@ PYBIND11_MODULE(_cpp, m) {
   hypercontact::python::declare_surface_contact(m);
   hypercontact::python::declare_surface_contact_friction(m);
   hypercontact::python::declare_assembly(m);
-  // The positional interface of before the input structs, kept until the Python side switches.
-  hypercontact::python::declare_assemble_rigid(m);
-  hypercontact::python::declare_assemble_friction(m);
-  hypercontact::python::declare_assemble_surface(m);
-  hypercontact::python::declare_assemble_surface_friction(m);
 }

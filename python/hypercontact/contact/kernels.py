@@ -34,7 +34,7 @@ def state_of(evaluation, names):
 
 
 def surface_arrays(evaluation, frictional):
-    """The state of a surface evaluation (or of a positional-API surface state)."""
+    """The state of a surface evaluation."""
     return state_of(evaluation, SURFACE_ARRAYS + (FRICTION_ARRAYS if frictional else ()))
 
 
