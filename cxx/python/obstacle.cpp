@@ -1,5 +1,5 @@
 // Bindings of obstacle.hpp (Feature, ObstacleProjection, RigidPlane, RigidBox, RigidCylinder,
-// project).
+// RigidSphere, project).
 #include <cmath>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -83,6 +83,22 @@ void declare_obstacle(py::module_& m) {
                     c.radius);
       });
 
+  py::class_<RigidSphere>(m, "RigidSphere", "Rigid ball; outside is admissible")
+      .def(py::init([](const RealArray& center, double radius) {
+             const Eigen::Vector3d c = as_vector3(center, "center");
+             if (!c.allFinite()) throw py::value_error("center: must be finite");
+             if (!(std::isfinite(radius) && radius > 0))
+               throw py::value_error("radius: must be finite and > 0");
+             return RigidSphere{c, radius};
+           }),
+           py::arg("center"), py::arg("radius"), "RigidSphere(center, radius)")
+      .def_readonly("center", &RigidSphere::center)
+      .def_readonly("radius", &RigidSphere::radius)
+      .def("__repr__", [](const RigidSphere& s) {
+        return py::str("RigidSphere(center={}, radius={})")
+            .format(py::cast(s.center).attr("tolist")(), s.radius);
+      });
+
   m.def(
       "project",
       [](const Obstacle& obstacle, const RealArray& x) {
@@ -91,7 +107,8 @@ void declare_obstacle(py::module_& m) {
         return project(obstacle, xv);
       },
       py::arg("obstacle"), py::arg("x"),
-      "Closest-point projection of the point x (3,) onto a RigidPlane, RigidBox or RigidCylinder");
+      "Closest-point projection of the point x (3,) onto a RigidPlane, RigidBox, RigidCylinder or\n"
+      "RigidSphere");
 }
 
 }  // namespace hypercontact::python

@@ -2,6 +2,7 @@
 #include <hypercontact/rigid_box.hpp>
 #include <hypercontact/rigid_cylinder.hpp>
 #include <hypercontact/rigid_plane.hpp>
+#include <hypercontact/rigid_sphere.hpp>
 
 namespace hypercontact {
 
@@ -14,6 +15,9 @@ struct Projector {
   ObstacleProjection operator()(const RigidBox& box) const { return project_to_box(box, x); }
   ObstacleProjection operator()(const RigidCylinder& cylinder) const {
     return project_to_cylinder(cylinder, x);
+  }
+  ObstacleProjection operator()(const RigidSphere& sphere) const {
+    return project_to_sphere(sphere, x);
   }
 };
 }  // namespace

@@ -3,7 +3,7 @@ and refuses another kind's, naming the kinds the key belongs to."""
 import pytest
 
 from hypercontact import scene
-from hypercontact.scene.contact import BoxContact, CylinderContact, PlaneContact, SurfaceContact
+from hypercontact.scene.contact import BoxContact, CylinderContact, PlaneContact, SphereContact, SurfaceContact
 
 #: Keys every kind has (the laws and their enforcement), with values that are not the defaults.
 COMMON = {"eps_n": 50.0, "mu": 0.2, "eps_t": 20.0, "penalty_factor": 10.0, "enforcement": "penalty",
@@ -12,9 +12,11 @@ KINDS = {
     "plane": {"point": [0.0, 0.0, -0.5], "normal": [0.0, 0.0, 2.0], "motion": [0.0, 0.0, 0.1]},
     "box": {"lo": [-1.0, -1.0, 1.0], "hi": [2.0, 2.0, 2.0], "motion": [0.0, 0.0, -0.1]},
     "cylinder": {"point": [0.5, 0.0, 1.5], "axis": [0.0, 1.0, 0.0], "radius": 0.5, "motion": [0.1, 0.0, 0.0]},
+    "sphere": {"center": [0.5, 0.5, 1.5], "radius": 0.6, "motion": [0.0, 0.0, -0.1]},
     "surface": {"master": "top.zmin", "passes": 1, "integration": "nodal", "capture": 0.1},
 }
-MODELS = {"plane": PlaneContact, "box": BoxContact, "cylinder": CylinderContact, "surface": SurfaceContact}
+MODELS = {"plane": PlaneContact, "box": BoxContact, "cylinder": CylinderContact, "sphere": SphereContact,
+          "surface": SurfaceContact}
 
 
 def two_blocks(contact):
@@ -42,10 +44,13 @@ def test_the_plain_dict_of_a_kind_has_its_keys_only(kind):
     assert set(c) == {"name", "surface", "obstacle", *COMMON, *KINDS[kind]}
 
 
-FOREIGN = [("plane", "lo", '"box"'), ("plane", "radius", '"cylinder"'), ("box", "normal", '"plane"'),
+FOREIGN = [("plane", "lo", '"box"'), ("plane", "radius", '"cylinder" or "sphere"'), ("box", "normal", '"plane"'),
            ("box", "point", '"plane" or "cylinder"'), ("cylinder", "master", '"surface"'),
            ("cylinder", "hi", '"box"'), ("surface", "point", '"plane" or "cylinder"'),
-           ("surface", "motion", '"plane", "box" or "cylinder"'), ("plane", "passes", '"surface"')]
+           ("surface", "motion", '"plane", "box", "cylinder" or "sphere"'), ("plane", "passes", '"surface"'),
+           ("sphere", "normal", '"plane"'), ("sphere", "axis", '"cylinder"'),
+           ("sphere", "point", '"plane" or "cylinder"'),
+           ("cylinder", "center", '"sphere"'), ("box", "center", '"sphere"')]
 
 
 @pytest.mark.parametrize("kind, key, owners", FOREIGN, ids=[f"{k}+{key}" for k, key, _ in FOREIGN])
@@ -66,13 +71,13 @@ def test_a_key_of_no_kind_gets_the_closest_name_of_its_own_kind():
         scene.load(two_blocks({"penalty_factr": 1.0}))  # no obstacle yet: the closest name of any kind
 
 
-@pytest.mark.parametrize("obstacle, found", [("sphere", "'sphere' (str)"), (["plane"], "['plane'] (list)"),
+@pytest.mark.parametrize("obstacle, found", [("cone", "'cone' (str)"), (["plane"], "['plane'] (list)"),
                                              ({"kind": "plane"}, "{'kind': 'plane'} (dict)"), (3, "3 (int)")])
 def test_the_obstacle_picks_a_kind_or_is_refused(obstacle, found):
     with pytest.raises(scene.SceneError) as err:
         scene.load(two_blocks({"obstacle": obstacle}))
-    assert str(err.value) == (f"scene key 'contact[0].obstacle': expected \"plane\", \"box\", \"cylinder\" (rigid) "
-                              f"or \"surface\" (a deformable body's surface), found {found}")
+    assert str(err.value) == (f"scene key 'contact[0].obstacle': expected \"plane\", \"box\", \"cylinder\", \"sphere\" "
+                              f"(rigid) or \"surface\" (a deformable body's surface), found {found}")
 
 
 def test_a_missing_obstacle_is_named():
@@ -83,6 +88,8 @@ def test_a_missing_obstacle_is_named():
 def test_required_keys_of_a_kind_say_what_they_are_for():
     with pytest.raises(scene.SceneError, match=r"'contact\[0\]\.radius': missing: a cylinder needs a radius > 0"):
         scene.load(two_blocks({"obstacle": "cylinder"}))
+    with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.radius': missing: a sphere needs a radius > 0"):
+        scene.load(two_blocks({"obstacle": "sphere", "center": [0.5, 0.5, 1.5]}))
     with pytest.raises(scene.SceneError, match=r"'contact\[0\]\.master': obstacle = \"surface\" needs the master"):
         scene.load(two_blocks({"obstacle": "surface"}))
 
@@ -91,6 +98,10 @@ def test_errors_inside_a_kind_name_the_entry_and_key():
     """The kind's class name, which pydantic puts into the error location, is not part of the key path."""
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.radius': expected a radius > 0"):
         scene.load(two_blocks({"obstacle": "cylinder", "radius": -1.0}))
+    for radius in (0.0, -1.0):
+        with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.radius': expected a radius > 0 "
+                                                   r"\(the sphere's"):
+            scene.load(two_blocks({"obstacle": "sphere", "radius": radius}))
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.normal': expected a non-zero vector"):
         scene.load(two_blocks({"obstacle": "plane", "normal": [0.0, 0.0, 0.0]}))
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.passes': expected 1 \(single pass"):

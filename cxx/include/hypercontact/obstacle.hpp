@@ -17,7 +17,8 @@ struct ObstacleProjection {
   /// towards x when open); ∂g/∂x = n.
   Eigen::Vector3d normal;
   /// ∂n/∂x: zero on a flat face, (I − n nᵀ − t tᵀ)/g on an edge with unit tangent t,
-  /// (I − n nᵀ)/g at a vertex.
+  /// (I − n nᵀ)/g at a vertex; (I − a aᵀ − n nᵀ)/ρ on a cylinder of axis a, (I − n nᵀ)/ρ on a
+  /// sphere (ρ the distance from the axis or the centre).
   Eigen::Matrix3d dnormal_dx;
   Feature feature;
 };
@@ -43,10 +44,17 @@ struct RigidCylinder {
   double radius;
 };
 
-using Obstacle = std::variant<RigidPlane, RigidBox, RigidCylinder>;
+/// Ball of centre `center` and radius `radius` > 0; the admissible region is outside it (a
+/// spherical indenter).
+struct RigidSphere {
+  Eigen::Vector3d center;
+  double radius;
+};
+
+using Obstacle = std::variant<RigidPlane, RigidBox, RigidCylinder, RigidSphere>;
 
 /// Projection of a finite point x onto any obstacle: dispatches to project_to_plane,
-/// project_to_box or project_to_cylinder.
+/// project_to_box, project_to_cylinder or project_to_sphere.
 ObstacleProjection project(const Obstacle& obstacle, const Eigen::Vector3d& x);
 
 }  // namespace hypercontact

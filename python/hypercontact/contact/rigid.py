@@ -1,5 +1,5 @@
 """Rigid obstacles as contact geometry: the slave nodes of one surface of the
-body against an analytic obstacle (plane, box, cylinder) that translates with
+body against an analytic obstacle (plane, box, cylinder, sphere) that translates with
 the load factor λ.
 
 Nodal integration (the paper): one slave point per slave node with the
@@ -23,6 +23,8 @@ def make_obstacle(kind, where, shift):
     if kind == "cylinder":
         return _cpp.RigidCylinder(np.asarray(where["point"]) + shift, np.asarray(where["axis"]),
                                   float(where["radius"]))
+    if kind == "sphere":
+        return _cpp.RigidSphere(np.asarray(where["center"]) + shift, float(where["radius"]))
     raise ValueError(f"unknown obstacle {kind!r}")
 
 
@@ -34,7 +36,7 @@ class RigidObstacle:
 
     def __init__(self, spec, V, facet_tags, tag, constrained):
         self.kind = spec["obstacle"]
-        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius") if k in spec}
+        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center") if k in spec}
         self.motion = np.asarray(spec["motion"], dtype=float)
         self.comm = V.mesh.comm
         area = nodal_areas(V, facet_tags, tag)
@@ -58,7 +60,7 @@ class RigidObstacle:
         """Start a new phase: where the obstacle is now becomes its rest
         position (λ = 0) and it moves by ``motion`` as λ goes 0 → 1."""
         shift = self.load_factor * self.motion
-        for key in ("point", "lo", "hi"):
+        for key in ("point", "lo", "hi", "center"):
             if key in self.rest:
                 self.rest[key] = [float(v) for v in np.asarray(self.rest[key], dtype=float) + shift]
         self.motion = np.asarray(motion, dtype=float)

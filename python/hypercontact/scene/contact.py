@@ -1,6 +1,6 @@
 """[[contact]]: a tagged union on ``obstacle``. Every kind has the keys of
 the normal and tangential laws and of their enforcement; the rigid
-obstacles (plane, box, cylinder) move by ``motion`` × λ and have their
+obstacles (plane, box, cylinder, sphere) move by ``motion`` × λ and have their
 own geometry; a deformable body's "surface" has its master surfaces and
 search. A key of another kind is refused, naming the kinds it belongs to.
 """
@@ -16,7 +16,7 @@ from .errors import HIDDEN_LOCATIONS, Invalid, describe, printable
 from .fields import (COORDINATES, LENGTH, NON_NEGATIVE, NON_ZERO_VECTOR, POSITIVE, from_to, integer, number,
                      one_of, string, vector)
 
-OBSTACLE_CHOICES = '"plane", "box", "cylinder" (rigid) or "surface" (a deformable body\'s surface)'
+OBSTACLE_CHOICES = '"plane", "box", "cylinder", "sphere" (rigid) or "surface" (a deformable body\'s surface)'
 #: ε_N and ε_T: 0 chooses them automatically.
 AUTOMATIC_OR_MAGNITUDE = "or from 1e-100 to 1e+100"
 
@@ -107,6 +107,16 @@ class CylinderContact(RigidContact):
                    LENGTH)
 
 
+class SphereContact(RigidContact):
+    """The ball of radius about center."""
+
+    KIND: ClassVar[str] = "sphere"
+    missing: ClassVar[dict] = {"radius": "missing: a sphere needs a radius > 0 (about its center)"}
+    obstacle: Literal["sphere"]
+    center: vector(COORDINATES) = [0.0, 0.0, 0.0]
+    radius: number((lambda x: x > 0, "a radius > 0 (the sphere's, about its center)"), LENGTH)
+
+
 class SurfaceContact(Contact):
     """The slave surface against the master surfaces of a deformable body."""
 
@@ -138,10 +148,10 @@ class SurfaceContact(Contact):
         return self.master.split("+")
 
 
-CONTACT_KINDS = {model.KIND: model for model in (PlaneContact, BoxContact, CylinderContact, SurfaceContact)}
+CONTACT_KINDS = {model.KIND: model for model in (PlaneContact, BoxContact, CylinderContact, SphereContact, SurfaceContact)}
 HIDDEN_LOCATIONS.update(model.__name__ for model in CONTACT_KINDS.values())
 #: One [[contact]] entry, of the kind its obstacle names.
-AnyContact = Annotated[Union[PlaneContact, BoxContact, CylinderContact, SurfaceContact],
+AnyContact = Annotated[Union[PlaneContact, BoxContact, CylinderContact, SphereContact, SurfaceContact],
                        Field(discriminator="obstacle")]
 Contacts = List[AnyContact]
 
