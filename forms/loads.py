@@ -1,5 +1,5 @@
-"""External loads as residual contributions (R = δΠ_int − δW_ext), each per
-unit load factor: the simulation multiplies them by λ.
+"""External loads as residual contributions (R = δΠ_int − δW_ext), each
+linear in its value (a number, or a Constant the load path sets).
 
 Follower pressure p on a surface of the deformed body: the traction in the
 current configuration is t = −p n (p > 0 pushes against the body's outward
@@ -22,4 +22,6 @@ def dead_load(v, value, measure):
     """Residual term of a dead load: a traction per unit reference area (on a
     facet measure) or a body force per unit reference volume (on dx), of
     fixed direction and size: −∫ value · v."""
-    return -ufl.dot(ufl.as_vector([float(c) for c in value]), v) * measure
+    if not isinstance(value, ufl.core.expr.Expr):
+        value = ufl.as_vector([float(c) for c in value])
+    return -ufl.dot(value, v) * measure

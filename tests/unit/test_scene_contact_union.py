@@ -9,10 +9,13 @@ from hypercontact.scene.contact import BoxContact, CylinderContact, PlaneContact
 COMMON = {"eps_n": 50.0, "mu": 0.2, "eps_t": 20.0, "penalty_factor": 10.0, "enforcement": "penalty",
           "gap_tolerance": 0.0, "smoothing": 0.0, "max_augmentations": 5}
 KINDS = {
-    "plane": {"point": [0.0, 0.0, -0.5], "normal": [0.0, 0.0, 2.0], "motion": [0.0, 0.0, 0.1]},
+    "plane": {"point": [0.0, 0.0, -0.5], "normal": [0.0, 0.0, 2.0], "motion": [0.0, 0.0, 0.1],
+              "rotation_axis": [1.0, 0.0, 0.0], "rotation_point": [0.5, 0.5, 0.0]},
     "box": {"lo": [-1.0, -1.0, 1.0], "hi": [2.0, 2.0, 2.0], "motion": [0.0, 0.0, -0.1]},
-    "cylinder": {"point": [0.5, 0.0, 1.5], "axis": [0.0, 1.0, 0.0], "radius": 0.5, "motion": [0.1, 0.0, 0.0]},
-    "sphere": {"center": [0.5, 0.5, 1.5], "radius": 0.6, "motion": [0.0, 0.0, -0.1]},
+    "cylinder": {"point": [0.5, 0.0, 1.5], "axis": [0.0, 1.0, 0.0], "radius": 0.5, "motion": [0.1, 0.0, 0.0],
+                 "rotation_axis": [0.0, 0.0, 1.0], "rotation_point": [0.5, 0.5, 1.5]},
+    "sphere": {"center": [0.5, 0.5, 1.5], "radius": 0.6, "motion": [0.0, 0.0, -0.1],
+               "rotation_axis": [0.0, 1.0, 0.0], "rotation_point": [0.5, 0.5, 2.1]},
     "surface": {"master": "top.zmin", "passes": 1, "integration": "nodal", "capture": 0.1},
 }
 MODELS = {"plane": PlaneContact, "box": BoxContact, "cylinder": CylinderContact, "sphere": SphereContact,
@@ -50,7 +53,8 @@ FOREIGN = [("plane", "lo", '"box"'), ("plane", "radius", '"cylinder" or "sphere"
            ("surface", "motion", '"plane", "box", "cylinder" or "sphere"'), ("plane", "passes", '"surface"'),
            ("sphere", "normal", '"plane"'), ("sphere", "axis", '"cylinder"'),
            ("sphere", "point", '"plane" or "cylinder"'),
-           ("cylinder", "center", '"sphere"'), ("box", "center", '"sphere"')]
+           ("cylinder", "center", '"sphere"'), ("box", "center", '"sphere"'),
+           ("box", "rotation_axis", '"plane", "cylinder" or "sphere"')]
 
 
 @pytest.mark.parametrize("kind, key, owners", FOREIGN, ids=[f"{k}+{key}" for k, key, _ in FOREIGN])

@@ -55,7 +55,7 @@ def test_defaults_are_filled_and_numbers_are_floats():
     sc = scene.load({"material": LAW, "mesh": {"size": [2, 2, 1]}, "bc": {"surface": "zmin", "fix": ["z"]}})
     assert sc["mesh"]["size"] == [2.0, 2.0, 1.0] and all(type(v) is float for v in sc["mesh"]["size"])
     assert sc["mesh"]["n"] == 4 and sc["steps"]["initial"] == 0.1 and sc["solver"]["petsc"] == {}
-    assert sc["bc"] == [{"surface": "zmin", "fix": ["z"], "motion": [0.0, 0.0, 0.0]}]  # one table: an array of one
+    assert sc["bc"] == [{"name": "", "surface": "zmin", "fix": ["z"], "motion": [0.0, 0.0, 0.0]}]  # an array of one
     assert sc["contact"] == [] and sc["title"] == ""
 
 

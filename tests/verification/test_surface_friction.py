@@ -139,7 +139,7 @@ def test_mu_zero_is_exactly_frictionless(tmp_path, monkeypatch):
     # the same state through the frictional assembly with μ = 0: the same geometry with the Coulomb law
     plain = sim.contacts[0]
     settings, candidates = sim.contact_settings[0], plain.geometry.candidates
-    law = _surface_law(dict(sc["contact"][0], mu=1.0), settings, plain.geometry, plain.comm)  # μ > 0 builds it
+    law = _surface_law(dict(sc["contact"][0], mu=1.0), settings, plain.geometry, plain.comm, 1.0)  # μ > 0 builds it
     law.mu = 0.0
     plain.geometry.candidates = candidates
     fric = Contact(plain.name, plain.geometry, law, plain.enforcement, plain.eps_n, plain.smoothing, plain.entry)

@@ -53,8 +53,8 @@ def _enforcement(settings, entry, num_points):
     return AugmentedLagrangian(num_points, settings.gap_tolerance, entry["max_augmentations"])
 
 
-def _surface_law(entry, settings, geometry, comm):
-    if entry["mu"] == 0:
+def _surface_law(entry, settings, geometry, comm, mu_max):
+    if mu_max == 0:
         return Frictionless()
     if geometry.nodes is None:
         raise ValueError(f"contact {settings.name!r}: friction against a surface needs nodal integration")
@@ -66,12 +66,14 @@ def _surface_law(entry, settings, geometry, comm):
     return law
 
 
-def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of):
+def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path):
     """(contacts, settings) of the scene's [[contact]] entries, in order (a
     two-pass surface contact gives two, the second named <name>_pass2).
     ``tag_of(surface, key)``: the facet tag of a named surface (raising a
     SceneError naming ``key``); ``material_of(surface)``: the material entry
-    of the body a slave surface belongs to (for the automatic ε_N)."""
+    of the body a slave surface belongs to (for the automatic ε_N); ``path``:
+    the scene's :class:`~hypercontact.scene.path.LoadPath` (a contact whose μ
+    is > 0 anywhere on it gets the Coulomb law)."""
     contacts, settings = [], []
     for i, entry in enumerate(scene["contact"]):
         slave = tag_of(entry["surface"], f"contact[{i}].surface")
@@ -87,20 +89,22 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of):
         for k, (name, slaves, masters) in enumerate(pairs):
             s = ContactSettings(name, eps_n, float(entry["eps_t"] or eps_n), gap_tolerance,
                                 penalty.smoothing_band(entry, V, facet_tags, slaves), note if k == 0 else None)
-            contacts.append(_make(entry, s, V, facet_tags, slaves, masters, constrained, second=k > 0))
+            contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i))
+            contact.index = i
+            contacts.append(contact)
             settings.append(s)
     return contacts, settings
 
 
-def _make(entry, s, V, facet_tags, slaves, masters, constrained, second):
+def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max):
     comm = V.mesh.comm
     if masters is None:
         geometry = RigidObstacle(entry, V, facet_tags, slaves[0], constrained)
-        law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if entry["mu"] > 0
+        law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if mu_max > 0
                else Frictionless())
     else:
         geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
                                   entry["capture"], s.name)
-        law = Frictionless() if second else _surface_law(entry, s, geometry, comm)
+        law = Frictionless() if second else _surface_law(entry, s, geometry, comm, mu_max)
     enforcement = _enforcement(s, entry, len(geometry.point_area))
     return Contact(s.name, geometry, law, enforcement, s.eps_n, s.smoothing, entry)

@@ -59,7 +59,7 @@ def _rigid(geometry, law, multipliers, eps_n, smoothing, x):
     if not law.frictional:
         return Evaluation(_cpp.evaluate_rigid_contact(contact), ("gap", "pressure"), x)
     h = law.history
-    friction = _cpp.RigidFrictionInput(contact=contact, xi_old=h.anchors(geometry.load_factor), t_old=h.traction,
+    friction = _cpp.RigidFrictionInput(contact=contact, xi_old=h.anchors(), t_old=h.traction,
                                        eps_t=law.eps_t, mu=law.mu)
     return Evaluation(_cpp.evaluate_rigid_friction(friction), ("gap", "pressure") + FRICTION_ARRAYS, x)
 

@@ -24,6 +24,7 @@ class Contact:
         self.eps_n, self.smoothing, self.entry = float(eps_n), float(smoothing), entry
         self.comm = geometry.comm
         self.evaluation = None
+        self.index = 0  # of its [[contact]] entry (the load path's channels)
 
     @property
     def frictional(self):
@@ -40,6 +41,14 @@ class Contact:
 
     def set_load_factor(self, load_factor):
         self.geometry.set_load_factor(load_factor)
+
+    def set_path_values(self, translation, angle, mu):
+        """Where the load path has the obstacle (rigid: translation from its
+        place in the scene, rotation angle) and μ now (a frictional law)."""
+        if translation is not None:
+            self.geometry.set_pose(translation, angle)
+        if self.law.frictional and self.law.mu != mu:
+            self.law.mu = float(mu)
 
     # --- one evaluation per iterate ------------------------------------------------
     def prepare(self, u):

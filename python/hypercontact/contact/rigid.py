@@ -1,6 +1,6 @@
 """Rigid obstacles as contact geometry: the slave nodes of one surface of the
-body against an analytic obstacle (plane, box, cylinder, sphere) that translates with
-the load factor λ.
+body against an analytic obstacle (plane, box, cylinder, sphere) that moves rigidly along
+the load path (translation, and rotation about an axis).
 
 Nodal integration (the paper): one slave point per slave node with the
 node's area A_i = ∫_Γ N_i dA (reference configuration). Each node is
@@ -11,21 +11,57 @@ from mpi4py import MPI
 
 from .. import _cpp
 from .. import _dolfinx as dfx
+from ..scene.path import rotation_matrix
 from .surface_mesh import nodal_areas
 
 
-def make_obstacle(kind, where, shift):
-    """The C++ obstacle ``kind`` at its rest position ``where`` moved by ``shift``."""
+def make_obstacle(kind, where, pose):
+    """The C++ obstacle ``kind`` at its rest position ``where`` in ``pose``
+    (its points mapped by the pose, its directions turned by its rotation)."""
     if kind == "plane":
-        return _cpp.RigidPlane(np.asarray(where["point"]) + shift, np.asarray(where["normal"]))
-    if kind == "box":
-        return _cpp.RigidBox(np.asarray(where["lo"]) + shift, np.asarray(where["hi"]) + shift)
+        return _cpp.RigidPlane(pose.point(where["point"]), pose.direction(where["normal"]))
+    if kind == "box":  # the scene allows no rotation of a box: it stays axis-aligned
+        return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]))
     if kind == "cylinder":
-        return _cpp.RigidCylinder(np.asarray(where["point"]) + shift, np.asarray(where["axis"]),
+        return _cpp.RigidCylinder(pose.point(where["point"]), pose.direction(where["axis"]),
                                   float(where["radius"]))
     if kind == "sphere":
-        return _cpp.RigidSphere(np.asarray(where["center"]) + shift, float(where["radius"]))
+        return _cpp.RigidSphere(pose.point(where["center"]), float(where["radius"]))
     raise ValueError(f"unknown obstacle {kind!r}")
+
+
+class Pose:
+    """A rigid motion: x ↦ pivot + t + R (x − pivot), R the rotation by
+    ``angle`` about ``axis`` (through the pivot at rest). Without rotation
+    a point is just moved by t."""
+
+    def __init__(self, translation, angle=0.0, axis=None, pivot=None):
+        self.t = np.asarray(translation, dtype=float)
+        self.angle = float(angle)
+        self.R = None if self.angle == 0.0 else rotation_matrix(axis, self.angle)
+        self.pivot = None if pivot is None else np.asarray(pivot, dtype=float)
+
+    def point(self, x):
+        x = np.asarray(x, dtype=float)
+        if self.R is None:
+            return x + self.t
+        return self.pivot + self.t + (x - self.pivot) @ self.R.T
+
+    def direction(self, d):
+        d = np.asarray(d, dtype=float)
+        return d if self.R is None else self.R @ d
+
+    def relative_to(self, earlier, x):
+        """Points x (rows) carried with the obstacle from ``earlier`` to this pose."""
+        if self.R is None and earlier.R is None:
+            return x + (self.t - earlier.t)
+        R0 = np.eye(3) if earlier.R is None else earlier.R
+        R1 = np.eye(3) if self.R is None else self.R
+        body = (x - (self.pivot + earlier.t)) @ R0  # R0ᵀ (x − pivot − t0), row-wise
+        return self.pivot + self.t + body @ R1.T
+
+    def state(self):
+        return {"translation": self.t.tolist(), "angle": self.angle}
 
 
 class RigidObstacle:
@@ -37,7 +73,11 @@ class RigidObstacle:
     def __init__(self, spec, V, facet_tags, tag, constrained):
         self.kind = spec["obstacle"]
         self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center") if k in spec}
-        self.motion = np.asarray(spec["motion"], dtype=float)
+        axis = spec["rotation_axis"] if any(spec.get("rotation_axis", ())) else spec.get("axis")
+        pivot = spec.get("rotation_point")
+        if pivot is None:
+            pivot = spec.get("center", spec.get("point"))
+        self.axis, self.pivot = axis, pivot
         self.comm = V.mesh.comm
         area = nodal_areas(V, facet_tags, tag)
         self.nodes = np.flatnonzero(area > 0.0).astype(np.int32)
@@ -50,25 +90,24 @@ class RigidObstacle:
         self.ids = dfx.global_node_indices(V).astype(np.int64)[self.nodes]
         self.scratch_size = 3 * dfx.num_local_nodes(V)
         self.num_points = self.comm.allreduce(len(self.nodes), op=MPI.SUM)
-        self.set_load_factor(0.0)
+        self.load_factor = 0.0
+        self.set_pose(np.zeros(3))
 
     def set_load_factor(self, load_factor):
+        """The phase's parameter s (the obstacle's place is set by :meth:`set_pose`)."""
         self.load_factor = load_factor
-        self.obstacle = make_obstacle(self.kind, self.rest, load_factor * self.motion)
 
-    def move(self, motion):
-        """Start a new phase: where the obstacle is now becomes its rest
-        position (λ = 0) and it moves by ``motion`` as λ goes 0 → 1."""
-        shift = self.load_factor * self.motion
-        for key in ("point", "lo", "hi", "center"):
-            if key in self.rest:
-                self.rest[key] = [float(v) for v in np.asarray(self.rest[key], dtype=float) + shift]
-        self.motion = np.asarray(motion, dtype=float)
-        self.set_load_factor(0.0)
+    def set_pose(self, translation, angle=0.0):
+        """Move the obstacle to ``translation`` from its place in the scene, turned by ``angle``."""
+        self.pose = Pose(translation, angle, self.axis, self.pivot)
+        self.obstacle = make_obstacle(self.kind, self.rest, self.pose)
 
     def displacement(self):
-        """How far the obstacle has moved: λ |motion|."""
-        return self.load_factor * float(np.linalg.norm(self.motion))
+        """How far the obstacle has moved from its place in the scene: |t|."""
+        return float(np.linalg.norm(self.pose.t))
+
+    def rotation(self):
+        return self.pose.angle
 
     def coordinates(self, u):
         """Current coordinates of this rank's slave nodes."""
@@ -101,36 +140,37 @@ class RigidObstacle:
 
 
 class RigidFrictionHistory:
-    """Per slave node, the last converged step's position ξ (its *anchor*,
-    carried with the obstacle's translation since then) and tangential
-    traction t."""
+    """Per slave node, the last converged step's position ξ (its *anchor*, a
+    point of the obstacle: carried with the obstacle's rigid motion —
+    translation and rotation — since then) and tangential traction t."""
 
     def __init__(self, geometry):
         self.geometry = geometry
         self.positions = geometry.X.copy()
         self.traction = np.zeros_like(geometry.X)
         self.lam_committed = 0.0
+        self.pose_committed = geometry.pose
 
-    def anchors(self, load_factor):
-        """ξ moved with the obstacle from the last commit to λ."""
-        return np.ascontiguousarray(self.positions + (load_factor - self.lam_committed) * self.geometry.motion)
+    def anchors(self):
+        """ξ carried with the obstacle from its pose at the last commit to its pose now."""
+        return np.ascontiguousarray(self.geometry.pose.relative_to(self.pose_committed, self.positions))
 
     def store(self, state, x):
         self.traction = np.ascontiguousarray(state.traction)
         self.positions = np.ascontiguousarray(x).copy()
         self.lam_committed = self.geometry.load_factor
-
-    def rebase(self):
-        """The obstacle starts a new phase at λ = 0 (move): ξ was committed where it is."""
-        self.lam_committed = 0.0
+        self.pose_committed = self.geometry.pose
 
     def pattern_nodes(self):
         return None
 
     def state_dict(self):
-        return {"lam_committed": self.lam_committed}, {"anchor": self.positions, "traction": self.traction}
+        return ({"lam_committed": self.lam_committed, "pose_committed": self.pose_committed.state()},
+                {"anchor": self.positions, "traction": self.traction})
 
     def load_state_dict(self, meta, arrays):
         self.lam_committed = meta["lam_committed"]
+        pose = meta["pose_committed"]
+        self.pose_committed = Pose(pose["translation"], pose["angle"], self.geometry.axis, self.geometry.pivot)
         self.positions = np.ascontiguousarray(arrays["anchor"], dtype=float)
         self.traction = np.ascontiguousarray(arrays["traction"], dtype=float)

@@ -9,10 +9,11 @@ from .. import _dolfinx as dfx
 from .. import geometry
 from ..contact import build_contacts
 from ..scene import SceneError
+from ..scene.path import LoadPath
 from ..solve.newton import Problem
 from .effects import describe_effects
 from .inversion import InversionCheck
-from .loading import Constraints, load_terms
+from .loading import Constraints, Loads
 from .probes import Probe
 from .volume import build_volume
 
@@ -36,13 +37,16 @@ class Model:
         self.constraints = Constraints(scene, self.w, space, self.body.facet_tags, self.tag, self.body.mesh)
         self.bcs = self.constraints.bcs
         R, J = self._with_loads(vol)
+        self.path = LoadPath(scene)
+        self.phase = 0  # the phase the load factor runs in
         self.contacts, self.contact_settings = build_contacts(
-            scene, self.V, self.body.facet_tags, self.tag, self.constraints.constrained, self.material_of)
+            scene, self.V, self.body.facet_tags, self.tag, self.constraints.constrained, self.material_of,
+            self.path)
         size = comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in scene["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, timers)
         self.inversion_check = InversionCheck(self.u, scene["discretisation"]["quadrature_degree"])
-        self.effects = describe_effects(scene, vol.description, self.contact_settings, self.constraints.num_moving,
+        self.effects = describe_effects(scene, vol.description, self.contact_settings, self.path.moving_bcs(),
                                         dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent)
 
     @property
@@ -59,14 +63,15 @@ class Model:
                                                   for c in self.contacts)
 
     def _with_loads(self, vol):
-        """R + λ q and its tangent; q (kept for continuation) and the λ Constant."""
+        """R + the loads and its tangent; q = ∂R/∂λ (kept for continuation) and
+        the λ Constant (the load factor of the phase: what drivers and tests read)."""
         self.load_factor = dfx.constant(self.body.mesh, 0.0)
-        self.q_form = load_terms(self.scene, self.body.mesh, self.body.facet_tags, self.tag, vol.trial_u, vol.test_u)
-        if self.q_form is None:
+        self.loads = Loads(self.scene, self.body.mesh, self.body.facet_tags, self.tag, vol.trial_u, vol.test_u)
+        self.q_form = self.loads.q
+        if self.loads.form is None:
             return vol.R, vol.J
         dw = ufl.TrialFunction(self.w.function_space)
-        return (vol.R + self.load_factor * self.q_form,
-                vol.J + self.load_factor * ufl.derivative(self.q_form, self.w, dw))
+        return vol.R + self.loads.form, vol.J + ufl.derivative(self.loads.form, self.w, dw)
 
     def tag(self, surface, key):
         """The facet tag of a named surface; SceneError naming ``key`` if there is none."""
@@ -92,10 +97,25 @@ class Model:
         return changed
 
     def set_load_factor(self, lam):
-        self.load_factor.value = lam
-        self.constraints.set_load_factor(lam)
+        """The load factor of the current phase (``phase``): s = λ."""
+        self.set_path(self.phase, lam)
+
+    def set_path(self, phase, s):
+        """Everything the load path drives, at parameter s of ``phase``: bcs,
+        loads, obstacles' poses, μ."""
+        self.phase = phase
+        values = self.path.values(phase, s)
+        self.load_factor.value = s
+        self.constraints.set_values(values)
+        self.loads.set_values(values)
         for c in self.contacts:
-            c.set_load_factor(lam)
+            c.set_load_factor(s)
+            c.set_path_values(values[("motion", c.index)] if ("motion", c.index) in values else None,
+                              values.get(("rotation", c.index), 0.0), values[("mu", c.index)])
+
+    def current_loads(self):
+        """{(section, i): value} of the loads now."""
+        return {key: c.value.copy() if c.value.shape else float(c.value) for key, c in self.loads.constants.items()}
 
     def sync_displacement(self):
         """u from the unknown (a no-op unless the formulation is mixed)."""

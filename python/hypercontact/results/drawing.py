@@ -11,14 +11,15 @@ from .. import _dolfinx as dfx
 
 def curve_columns(w):
     """(x, ys) drawn in curves.png: the contact forces (each contact's
-    largest component) against the first contact's displacement; without
+    largest component) against the first contact's displacement (with
+    phases: against the accumulated parameter τ, ``time``); without
     contacts, the pressures (else the load factor) against the stop
     probe's controlled component, or the first probe's largest one."""
     def largest(columns):
         return max(columns, key=lambda c: max(abs(s[c]) for s in w.steps))
 
     if w.contacts:
-        x = f"{w.contacts[0].name}_displacement"
+        x = f"{w.contacts[0].name}_displacement" if w.path.implicit else "time"
         return x, [largest([f"{c.name}_f{a}" for a in "xyz"]) for c in w.contacts]
     st = w.scene["steps"]
     if st.get("control", "load") != "load" and st.get("stop_probe") in w.probes:

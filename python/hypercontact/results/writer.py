@@ -35,6 +35,7 @@ from pathlib import Path
 from mpi4py import MPI
 
 from . import drawing
+from ..scene.path import LoadPath
 from .fields import FieldWriter
 
 #: contact observables multiplied by the symmetry factor (forces and energies)
@@ -42,14 +43,19 @@ SCALED = {"fx", "fy", "fz", "dissipation_step", "dissipation"}
 
 
 class ResultsWriter:
-    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes, previous=None, stress=None):
+    def __init__(self, out_dir, comm, scene, effects, u, contacts, probes, previous=None, stress=None, path=None):
         """``previous``: the checkpointed state of an interrupted run being
         resumed: its steps are kept, the CSV rewritten, the XDMF appended.
         ``stress``: the material's first Piola–Kirchhoff stress, a callable
         ``stress(u) -> P`` (a 3×3 UFL expression of u, e.g.
         :func:`~.fields.first_piola_stress`): fields.xdmf then also holds the
-        Cauchy stress and its von Mises value."""
+        Cauchy stress and its von Mises value. ``path``: the load path
+        (:class:`~hypercontact.scene.path.LoadPath`): with phases, each row
+        has its phase and the accumulated parameter τ (``time``), and the
+        summary lists the phases as run."""
         self.comm, self.scene, self.effects = comm, scene, effects
+        self.path = path if path is not None else LoadPath(scene)
+        self.phases = list(previous.get("phases", [])) if previous else []
         self.u, self.contacts, self.probes = u, contacts, probes
         self.out = Path(out_dir)
         self.factor = scene["output"]["symmetry_factor"]
@@ -88,6 +94,8 @@ class ResultsWriter:
 
     def _columns(self):
         columns = ["step", "load_factor", "newton_iterations"]
+        if not self.path.implicit:
+            columns[1:1] = ["phase", "time"]
         if self.scene["steps"]["control"] == "load":  # continuation solves its bordered systems with LU
             columns.append("linear_iterations")
         for c in self.contacts:
@@ -98,16 +106,36 @@ class ResultsWriter:
             columns += ["stick_slip_changes", "stick_slip_flips"]
         for name in self.probes:
             columns += [f"{name}_u{a}" for a in "xyz"]
-        self.pressures = {f"pressure_{p['surface']}": p["value"] for p in self.scene["pressure"]}
+        self.pressures = {f"pressure_{p['surface']}": i for i, p in enumerate(self.scene["pressure"])}
         return columns + list(self.pressures)
 
+    def start_phase(self, k):
+        """Phase k begins (or goes on, after a resume)."""
+        spec = self.path.phases[k]
+        if self.phases and self.phases[-1]["index"] == k + 1:
+            self.phases[-1]["status"] = "running"
+            return
+        self.phases.append({"index": k + 1, "name": spec.name, "length": spec.length, "start": spec.start,
+                            "first_step": len(self.steps) + 1, "last_step": None, "status": "running",
+                            "steps": spec.steps, "solver": spec.solver})
+
+    def end_phase(self, k, status):
+        if self.phases and self.phases[-1]["index"] == k + 1:
+            self.phases[-1]["status"] = status
+            self.phases[-1]["last_step"] = len(self.steps) if len(self.steps) >= self.phases[-1]["first_step"] \
+                else None
+
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
-                   active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None):
+                   active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None, phase=0):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         step = len(self.steps) + 1
-        fields = self.field_writer.compute(load_factor, step) if self.field_writer else None
+        # fields.xdmf's time: the load factor, or with phases the accumulated τ (λ restarts in each phase)
+        t = load_factor if self.path.implicit else self.path.time(phase, load_factor)
+        fields = self.field_writer.compute(t, step) if self.field_writer else None
         row = {"step": step, "load_factor": load_factor,
                "newton_iterations": iterations}
+        if not self.path.implicit:
+            row["phase"], row["time"] = phase + 1, self.path.time(phase, load_factor)
         if linear_iterations is not None:
             row["linear_iterations"] = linear_iterations
         friction = {"dissipation_step": 0.0, "dissipation": 0.0, "stick_slip_flips": 0}
@@ -123,8 +151,9 @@ class ResultsWriter:
         for name, probe in self.probes.items():
             for a, value in zip("xyz", probe.value(self.u)):
                 row[f"{name}_u{a}"] = float(value)
-        for name, value in self.pressures.items():
-            row[name] = load_factor * value
+        values = self.path.values(phase, load_factor) if self.pressures else {}
+        for name, i in self.pressures.items():
+            row[name] = values[("pressure", i)]
         self.steps.append({**row, "residual_norms": norms, "active_set_settled_at": settled_from,
                            "active_set_changes": active_set_changes, "update_norms": list(update_norms),
                            "augmentations": augmentations})
@@ -132,7 +161,7 @@ class ResultsWriter:
             self._csv.writerow([row.get(k, "") for k in self.columns])  # a driver may give no Krylov count
             self._csv_file.flush()
         if self.field_writer:
-            self.field_writer.write(load_factor, fields)
+            self.field_writer.write(t, fields)
         self._u_last = self.u.x.array.copy()
         self.write_summary(timers)
         return row
@@ -174,6 +203,7 @@ class ResultsWriter:
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
             "linear_iterations": [s.get("linear_iterations") for s in self.steps],
             "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
+            "phases": self.phases,
             "steps": self.steps, "failed_attempts": self.failed_attempts, "scene": self.scene,
         }
         if self.rank0:

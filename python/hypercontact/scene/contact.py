@@ -5,7 +5,7 @@ own geometry; a deformable body's "surface" has its master surfaces and
 search. A key of another kind is refused, naming the kinds it belongs to.
 """
 import difflib
-from typing import ClassVar, List, Literal, Union
+from typing import ClassVar, List, Literal, Optional, Union
 
 from pydantic import Field, root_validator, validator
 from typing_extensions import Annotated
@@ -59,12 +59,30 @@ class Contact(SceneModel):
 
 
 class RigidContact(Contact):
-    """A rigid obstacle, moved by λ × motion."""
+    """A rigid obstacle, moved by λ × motion (with [[phase]]: moved by the phases)."""
 
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]
 
 
-class PlaneContact(RigidContact):
+class TurningContact(RigidContact):
+    """A rigid obstacle the phases may also rotate, about rotation_axis
+    through rotation_point (the point moves with the translation)."""
+
+    #: [0, 0, 0]: the cylinder's own axis; the pivot by default the cylinder's point, the sphere's
+    #: center, the plane's point
+    rotation_axis: vector(COORDINATES) = [0.0, 0.0, 0.0]
+    rotation_point: Optional[vector(COORDINATES)] = None
+
+    def pivot(self):
+        """(axis, point) the phases rotate the obstacle about; None where the obstacle has no default."""
+        axis = self.rotation_axis if any(self.rotation_axis) else getattr(self, "axis", None)
+        point = self.rotation_point
+        if point is None:
+            point = next((getattr(self, k) for k in ("center", "point") if hasattr(self, k)), None)
+        return axis, point
+
+
+class PlaneContact(TurningContact):
     """The half-space behind the plane through point, normal pointing out of it."""
 
     KIND: ClassVar[str] = "plane"
@@ -94,7 +112,7 @@ class BoxContact(RigidContact):
         return values
 
 
-class CylinderContact(RigidContact):
+class CylinderContact(TurningContact):
     """The infinite cylinder of radius about the axis through point."""
 
     KIND: ClassVar[str] = "cylinder"
@@ -107,7 +125,7 @@ class CylinderContact(RigidContact):
                    LENGTH)
 
 
-class SphereContact(RigidContact):
+class SphereContact(TurningContact):
     """The ball of radius about center."""
 
     KIND: ClassVar[str] = "sphere"

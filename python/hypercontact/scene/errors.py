@@ -60,15 +60,15 @@ def fail(path, message):
 HIDDEN_LOCATIONS = {"__root__"}
 
 
-def _first_error(errors, loc=()):
+def first_error(errors, loc=()):
     """(location, exception) of the first error in pydantic's nested lists."""
     for error in errors:
         if isinstance(error, list):
-            found = _first_error(error, loc)
+            found = first_error(error, loc)
         else:
             assert isinstance(error, ErrorWrapper)
             here = loc + error.loc_tuple()
-            found = _first_error(error.exc.raw_errors, here) if isinstance(error.exc, ValidationError) \
+            found = first_error(error.exc.raw_errors, here) if isinstance(error.exc, ValidationError) \
                 else (here, error.exc)
         if found is not None:
             return found
@@ -78,7 +78,7 @@ def _first_error(errors, loc=()):
 def scene_error(err):
     """The SceneError of a pydantic ValidationError: its first error, with
     the key path of its location."""
-    loc, exc = _first_error(err.raw_errors)
+    loc, exc = first_error(err.raw_errors)
     if isinstance(exc, Invalid):
         loc, message = loc + exc.loc, exc.message
     else:  # a check of pydantic's own (every field has a type of ours: not expected)

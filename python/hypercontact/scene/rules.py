@@ -8,10 +8,14 @@ them (after every table is valid on its own).
 import difflib
 import math
 
+from pydantic import ValidationError
+
 from .builders import BUILDERS
-from .contact import RigidContact, SurfaceContact
-from .errors import Invalid, describe, printable
+from .contact import RigidContact, SurfaceContact, TurningContact
+from .errors import HIDDEN_LOCATIONS, Invalid, describe, first_error, printable
+from .sections import Solver, Steps
 from ..forms.registry import LAWS
+from .path import LoadPath, check_no_jumps
 
 
 def several_bodies_need_one_built_mesh(s):
@@ -202,7 +206,138 @@ def continuation_needs_fixed_contacts(s):
         raise Invalid(f"{control} control with prescribed motion is not supported yet", ("steps", "control"))
 
 
+
+
+
+# --- [[phase]] ----------------------------------------------------------------------------------
+LOAD_SECTIONS = ("pressure", "traction", "body_force")
+
+
+def _nested(model, data, loc):
+    """``model`` parsed from ``data``, or Invalid at ``loc`` + the key that is wrong."""
+    try:
+        return model.parse_obj(data)
+    except ValidationError as err:
+        inner, exc = first_error(err.raw_errors)
+        message = exc.message if isinstance(exc, Invalid) else printable(exc, 300)
+        inner = tuple(p for p in inner if p not in HIDDEN_LOCATIONS) + (exc.loc if isinstance(exc, Invalid) else ())
+        raise Invalid(message, loc + inner) from None
+
+
+def loads_have_values(s):
+    """Without [[phase]] a load is λ × its value; with [[phase]] the phases give its value."""
+    for section in LOAD_SECTIONS:
+        for i, load in enumerate(getattr(s, section)):
+            if not s.phase and load.value is None:
+                raise Invalid("missing (required)", (section, i, "value"))
+            if s.phase and load.value is not None:
+                raise Invalid(f"with [[phase]] the phases give a load's value (phase[k].{section}.<its name>), "
+                              "found one here: remove it and give it in the phases", (section, i, "value"))
+
+
+def _names(entries, section):
+    """{name: index} of the named entries of a section; Invalid on a repeated name."""
+    names = {}
+    for i, e in enumerate(entries):
+        if e.name and e.name in names:
+            raise Invalid(f"duplicate {section} name {e.name!r} ({section}[{names[e.name]}] has it)",
+                          (section, i, "name"))
+        if e.name:
+            names[e.name] = i
+    return names
+
+
+def _unknown_name(name, names, section, loc):
+    close = difflib.get_close_matches(name, list(names), n=1)
+    hint = f"; did you mean '{close[0]}'?" if close else ""
+    known = ", ".join(sorted(names)) or f"none: give a [[{section}]] entry a name"
+    raise Invalid(f"no [[{section}]] entry is named {printable(repr(name), 60)} (named entries: {known}){hint}",
+                  loc)
+
+
+def phases_name_what_exists(s):
+    """Every entry a phase names exists; a phase moves only the axes a bc
+    fixes and only rigid obstacles; μ changes only where friction is possible."""
+    if not s.phase:
+        return
+    for i, bc in enumerate(s.bc):
+        if any(bc.motion):
+            raise Invalid("with [[phase]] the phases move the bcs (phase[k].bc.<its name>), found a motion here: "
+                          "remove it and give it in the phases", ("bc", i, "motion"))
+    for j, c in enumerate(s.contact):
+        if isinstance(c, RigidContact) and any(c.motion):
+            raise Invalid("with [[phase]] the phases move the obstacles (phase[k].contact.<its name>.motion), "
+                          "found a motion here: remove it and give it in the phases", ("contact", j, "motion"))
+    bcs = _names(s.bc, "bc")
+    loads = {section: _names(getattr(s, section), section) for section in LOAD_SECTIONS}
+    contacts = {c.name: j for j, c in enumerate(s.contact)}
+    for k, ph in enumerate(s.phase):
+        for name, points in ph.bc.items():
+            loc = ("phase", k, "bc", name)
+            if name not in bcs:
+                _unknown_name(name, bcs, "bc", loc)
+            bc = s.bc[bcs[name]]
+            for _, v in points:
+                free = [a for a, m in zip("xyz", v) if m != 0 and a not in bc.fix]
+                if free:
+                    raise Invalid(f"moves {', '.join(free)}, which bc {name!r} does not fix (fix = {bc.fix})", loc)
+        for section in LOAD_SECTIONS:
+            for name in getattr(ph, section):
+                if name not in loads[section]:
+                    _unknown_name(name, loads[section], section, ("phase", k, section, name))
+        for name, change in ph.contact.items():
+            loc = ("phase", k, "contact", name)
+            if name not in contacts:
+                close = difflib.get_close_matches(name, list(contacts), n=1)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                raise Invalid(f"no [[contact]] is named {printable(repr(name), 60)} (contacts: "
+                              f"{', '.join(contacts) or 'none'}){hint}", loc)
+            j = contacts[name]
+            c = s.contact[j]
+            if not isinstance(c, RigidContact) and (change.motion or change.rotation):
+                key = "motion" if change.motion else "rotation"
+                raise Invalid(f"contact {name!r} has a deformable master (obstacle = \"surface\"): move its body "
+                              "with a bc instead", loc + (key,))
+            if change.rotation and any(v != 0 for _, v in change.rotation):
+                if not isinstance(c, TurningContact):
+                    raise Invalid("a box stays axis-aligned: it cannot rotate (use a plane or a cylinder)",
+                                  loc + ("rotation",))
+                axis, point = c.pivot()
+                if axis is None:
+                    raise Invalid(f"rotating a {c.obstacle} needs its rotation_axis (the axis turns about "
+                                  "rotation_point, by default its " + ("center" if c.obstacle == "sphere" else
+                                                                       "point") + ")",
+                                  ("contact", j, "rotation_axis"))
+            if change.mu and any(v > 0 for _, v in change.mu) and isinstance(c, SurfaceContact) and \
+                    (c.passes == 2 or c.integration == "gauss"):
+                raise Invalid('friction against a deformable surface needs passes = 1 and integration = "nodal"',
+                              loc + ("mu",))
+
+
+def phases_have_valid_settings(s):
+    """A phase's [steps] and [solver] keys are those of the scene's tables
+    (checked with the scene's other keys); phases run under load control."""
+    for k, ph in enumerate(s.phase):
+        steps = _nested(Steps, {**s.steps.dict(), **ph.steps}, ("phase", k, "steps"))
+        _nested(Solver, {**s.solver.dict(), **ph.solver}, ("phase", k, "solver"))
+        if steps.control != "load":
+            where = ("phase", k, "steps", "control") if "control" in ph.steps else ("steps", "control")
+            raise Invalid(f"phases run under load control; {steps.control!r} control in a phase is not "
+                          "supported yet", where)
+
+
+def phase_curves_do_not_jump(s):
+    """A curve's point at s = 0 is where its value is when the phase starts."""
+    if not s.phase:
+        return
+    data = {"bc": [b.dict() for b in s.bc], "contact": [c.dict() for c in s.contact],
+            "phase": [p.dict() for p in s.phase], "steps": s.steps.dict(), "solver": s.solver.dict(),
+            **{section: [e.dict() for e in getattr(s, section)] for section in LOAD_SECTIONS}}
+    check_no_jumps(LoadPath(data))
+
+
 RULES = (several_bodies_need_one_built_mesh, split_formulations_need_builtin_laws, incompressible_needs_mixed,
          contact_needs_linear_displacements, surfaces_exist, pressures_do_work,
-         automatic_penalty_needs_builtin_law, probes_in_body, continuation_needs_a_stop_probe_and_a_load,
+         automatic_penalty_needs_builtin_law, probes_in_body, loads_have_values, phases_name_what_exists,
+         phases_have_valid_settings, phase_curves_do_not_jump, continuation_needs_a_stop_probe_and_a_load,
          continuation_needs_fixed_contacts)

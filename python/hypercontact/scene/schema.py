@@ -16,12 +16,13 @@ from .contact import Contacts, contact_tables, duplicate_names
 from .fields import string
 from .material import Material
 from .mesh import Body, Mesh
+from .phases import Phase
 from .rules import RULES, surfaces
 from .sections import (BodyForce, BoundaryCondition, Discretisation, Output, Pressure, Solver, Steps,
                        Traction)
 
 #: The arrays of tables ([[name]]) of a scene.
-ARRAYS = ("body", "pressure", "traction", "body_force", "bc")
+ARRAYS = ("body", "pressure", "traction", "body_force", "bc", "phase")
 
 
 class Scene(SceneModel):
@@ -38,6 +39,7 @@ class Scene(SceneModel):
     steps: Steps = Steps()
     solver: Solver = Solver()
     output: Output = Output()
+    phase: List[Phase] = []
 
     @validator(*ARRAYS, pre=True)
     def arrays_of_tables(cls, value, field):

@@ -1,6 +1,6 @@
 """The scene tables besides mesh, bodies, materials and contacts:
 discretisation, loads, boundary conditions, steps, solver and output."""
-from typing import Dict
+from typing import Dict, Optional
 
 from pydantic import root_validator, validator
 
@@ -28,29 +28,39 @@ class Discretisation(SceneModel):
         return values
 
 
-class Pressure(SceneModel):
-    """A follower pressure λ × value on a surface."""
+#: The name [[phase]] tables use for an entry of [[bc]] or of a load.
+ENTRY_NAME = (lambda x: x == "" or x.replace("_", "a").replace("-", "a").isalnum(),
+              "a name of letters, digits, _ and - (phases name the entry by it)")
 
+
+class Pressure(SceneModel):
+    """A follower pressure λ × value on a surface (with [[phase]]: the phases give its value)."""
+
+    name: string(ENTRY_NAME) = ""
     surface: string()
-    value: number(MAGNITUDE)
+    value: Optional[number(MAGNITUDE)] = None
 
 
 class Traction(SceneModel):
-    """A dead traction λ × value on a surface."""
+    """A dead traction λ × value on a surface (with [[phase]]: the phases give its value)."""
 
+    name: string(ENTRY_NAME) = ""
     surface: string()
-    value: vector(COORDINATES)
+    value: Optional[vector(COORDINATES)] = None
 
 
 class BodyForce(SceneModel):
-    """A dead body force λ × value per unit reference volume."""
+    """A dead body force λ × value per unit reference volume (with [[phase]]: the phases give its value)."""
 
-    value: vector(COORDINATES)
+    name: string(ENTRY_NAME) = ""
+    value: Optional[vector(COORDINATES)] = None
 
 
 class BoundaryCondition(SceneModel):
-    """u_a = λ × motion_a on a surface, for the fixed axes a."""
+    """u_a = λ × motion_a on a surface, for the fixed axes a (with [[phase]]:
+    the phases move it)."""
 
+    name: string(ENTRY_NAME) = ""
     surface: string()
     fix: strings(AXES)
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]

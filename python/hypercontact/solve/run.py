@@ -31,15 +31,16 @@ class Observers:
             changes, flips = history.active_set_changes(), history.stick_slip_changes()
             row = self.writer.write_step(lam, its, norms, self.run.split(), history.last_active_set_change(),
                                          history.update_norms, changes, flips, self.run.driver.augmentations,
-                                         self.run.driver.linear_its)
+                                         self.run.driver.linear_its, phase=self.model.phase)
         for n, what in ((changes, "contact active set"), (flips, "stick/slip status")):
             if n >= self.steps["chatter_warning"]:
                 self.log(f"   the {what} changed in {n} Newton iterations of this step "
                          "(chattering): smaller steps or a backtracking line search damp it")
         krylov = (f"  Krylov {row['linear_iterations']:4d}"
                   if self.model.problem.linear_kind == "iterative" else "")
-        self.log(f"step {row['step']:3d}  λ = {lam:.4f}  Newton {its:2d}{krylov}  "
-                 f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(lam)}")
+        where = f"{self.run.phase_label()}λ = {lam:.4f}"
+        self.log(f"step {row['step']:3d}  {where}  Newton {its:2d}{krylov}  "
+                 f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(self.model.path.progress(self.model.phase, lam))}")
         self.run.save_checkpoint(self.writer, controller)
 
     def converged_path(self, lam, its, norms, reached, target, controller, du_prev):
@@ -55,6 +56,8 @@ class Observers:
         self.writer.limit_points.append({"after_step": after_step, "load_factor": load_factor})
 
     def failed(self, story):
+        if not self.model.path.implicit:
+            story = {"phase": self.model.phase + 1, **story}
         self.writer.record_failed_attempt(story, self.run.split())
 
 
@@ -66,10 +69,22 @@ class Run:
         self.fail_attempt = fail_attempt
         self.driver = None  # built by each run: the SNES takes the scene's PETSc options then
 
+    def phase_label(self):
+        """'phase 2 "slide"  ' in a scene with phases, else ''."""
+        path = self.model.path
+        if path.implicit:
+            return ""
+        return f"phase {self.model.phase + 1} {path.phases[self.model.phase].name!r}  "
+
+    def _driver(self, phase):
+        """The driver of a phase: the scene with the phase's [steps] and [solver]."""
+        spec = self.model.path.phases[phase]
+        scene = {**self.scene, "steps": spec.steps, "solver": spec.solver}
+        if scene["steps"]["control"] == "load":
+            return LoadStepping(self.model, scene, self.timers, self.log, self.fail_attempt)
+        return PathFollowing(self.model, scene, self.timers, self.log)
+
     def _start(self):
-        scene, model = self.scene, self.model
-        self.driver = (LoadStepping(model, scene, self.timers, self.log, self.fail_attempt)
-                       if scene["steps"]["control"] == "load" else PathFollowing(model, scene, self.timers, self.log))
         PETSc.Log.begin()
         self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         self._t0 = {name: e.getPerfInfo()["time"] for name, e in self._events.items()}
@@ -102,8 +117,9 @@ class Run:
                 meta, data = c.state_dict()
                 contacts[c.name] = meta
                 arrays.update({f"{c.name}.{k}": v for k, v in data.items()})
-            state = {**controller, "steps": writer.steps, "limit_points": writer.limit_points,
-                     "failed_attempts": writer.failed_attempts, "contacts": contacts}
+            state = {**controller, "phase": self.model.phase, "steps": writer.steps,
+                     "limit_points": writer.limit_points, "failed_attempts": writer.failed_attempts,
+                     "phases": writer.phases, "contacts": contacts}
             self.checkpoint.save(state, w=self.model.w.x.array, **arrays)
 
     def _resume(self, state, arrays):
@@ -114,38 +130,56 @@ class Run:
             prefix = f"{c.name}."
             c.load_state_dict(state["contacts"][c.name],
                               {k[len(prefix):]: v for k, v in arrays.items() if k.startswith(prefix)})
+        model.phase = state.get("phase", 0)
         if state["steps"]:
             last, st = state["steps"][-1], self.scene["steps"]
-            self._progress0 = (last["load_factor"] if st["control"] == "load" else
+            self._progress0 = (model.path.progress(model.phase, last["load_factor"]) if st["control"] == "load" else
                                last[f"{st['stop_probe']}_u{st['stop_component']}"] / st["stop_value"])
 
-    def __call__(self, out_dir, resume=False):
-        """Solve the load path; returns the results writer; raises StepFailure
-        after writing everything that converged."""
+    def __call__(self, out_dir, resume=False, phases=None):
+        """Solve the load path, phase after phase (``phases``: which, by
+        index; default all, or from the checkpoint's phase on); returns the
+        results writer; raises StepFailure after writing everything that
+        converged."""
         self._start()
         self.checkpoint = Checkpoint(Path(out_dir) / "checkpoint", self.model.comm)
         state, arrays = self.checkpoint.load() if resume else (None, {})
+        model = self.model
         if state is not None:
             self._resume(state, arrays)
-        model = self.model
+        if phases is None:
+            phases = range(model.phase if state is not None else 0, len(model.path.phases))
         writer = ResultsWriter(out_dir, model.comm, self.scene, model.effects, model.u, model.contacts, model.probes,
-                               previous=state, stress=model.stress)
+                               previous=state, stress=model.stress, path=model.path)
         self.log(f"hypercontact: {', '.join(model.effects)}; "
                  f"{dfx.num_global_dofs(model.w.function_space)} unknowns on {model.comm.size} rank(s)")
-        lam0 = state["lam"] if state is not None else 0.0
+        observers = Observers(self, writer)
+        last = (model.phase, state["lam"] if state is not None else 0.0)
         try:
-            if self.scene["steps"]["control"] == "load":
-                self.driver.run(Observers(self, writer), out_dir, state)
-            else:
-                self.driver.run(Observers(self, writer), out_dir, state, arrays)
+            for k in phases:
+                resumed = state if state is not None and state.get("phase", 0) == k else None
+                if resumed is None:
+                    model.set_path(k, 0.0)  # where the previous phase ended
+                self.driver = self._driver(k)
+                writer.start_phase(k)
+                if not model.path.implicit:
+                    spec = model.path.phases[k]
+                    self.log(f"phase {k + 1} {spec.name!r}: τ from {spec.start:g} to {spec.start + spec.length:g}")
+                if isinstance(self.driver, LoadStepping):
+                    self.driver.run(observers, out_dir, resumed)
+                else:
+                    self.driver.run(observers, out_dir, resumed, arrays)
+                writer.end_phase(k, "completed")
+                last = (k, 1.0)
         except BaseException as err:
-            model.set_load_factor(_last_load_factor(writer, lam0))
+            if writer.steps:
+                last = (writer.steps[-1].get("phase", 1) - 1 if not model.path.implicit else model.phase,
+                        writer.steps[-1]["load_factor"])
+            model.set_path(*last)
             message = str(err) or type(err).__name__
-            writer.finish("interrupted" if isinstance(err, KeyboardInterrupt) else "failed", message, self.split())
+            status = "interrupted" if isinstance(err, KeyboardInterrupt) else "failed"
+            writer.end_phase(model.phase, status)
+            writer.finish(status, message, self.split())
             raise
         writer.finish("completed", "", self.split())
         return writer
-
-
-def _last_load_factor(writer, default):
-    return writer.steps[-1]["load_factor"] if writer.steps else default
