@@ -49,6 +49,9 @@ def test_raising_the_base_friction_under_a_held_punch_changes_nothing(scenes_dir
         assert abs(s["dissipation"]) <= 1e-12 * abs(fz)
     punch, base = sim.contacts
     assert base.frictional and base.law.mu == pytest.approx(1.0) and not punch.frictional
+    # the run says what it simulates: μ along the phases, the phases by name
+    assert "Coulomb friction μ = 0 → 1" in sim.effects[1]
+    assert "2 phases ('press', 'hold, base friction 0 → 1')" in sim.effects
 
 
 def test_a_study_sweeps_the_phases_of_a_scene(scenes_dir, out_dir, tmp_path):

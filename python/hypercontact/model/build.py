@@ -47,7 +47,8 @@ class Model:
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, timers)
         self.inversion_check = InversionCheck(self.u, scene["discretisation"]["quadrature_degree"])
         self.effects = describe_effects(scene, vol.description, self.contact_settings, self.path.moving_bcs(),
-                                        dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent)
+                                        dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent,
+                                        self.path)
 
     @property
     def symmetric_tangent(self):

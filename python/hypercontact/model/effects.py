@@ -5,20 +5,35 @@ from ..solve.newton import linear_solver_options
 CONTROL = {"load": "load control", "arclength": "arc-length continuation", "displacement": "displacement control"}
 
 
-def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False):
-    """[material, contacts, automatic penalties, loads, control, linear solver]."""
+def _mu(scene, path, j):
+    """The friction coefficient of contact j in words: '0.3', or along the
+    phases '0 → 1' (the value at the start and at the end of each phase)."""
+    mu = [scene["contact"][j]["mu"]]
+    if path is not None and not path.implicit:
+        for k in range(len(path.phases)):
+            v = path.values(k, 1.0)[("mu", j)]
+            if v != mu[-1]:
+                mu.append(v)
+    return " → ".join(f"{m:g}" for m in mu)
+
+
+def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False, path=None):
+    """[material, contacts, automatic penalties, loads, control, linear
+    solver]; ``path``: the scene's LoadPath (with phases: μ along them, and
+    the phases in words)."""
     contacts = scene["contact"]
     n_rigid = sum(c["obstacle"] != "surface" for c in contacts)
-    mus = sorted({c["mu"] for c in contacts if c["mu"] > 0})
-    friction = f"Coulomb friction μ = {', '.join(f'{m:g}' for m in mus)}" if mus else "frictionless"
+    frictional = [j for j in range(len(contacts)) if (path.max_mu(j) if path is not None else contacts[j]["mu"]) > 0]
+    mus = list(dict.fromkeys(_mu(scene, path, j) for j in frictional if contacts[j]["obstacle"] != "surface"))
+    friction = f"Coulomb friction μ = {', '.join(mus)}" if mus else "frictionless"
     effects = [material, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})" if n_rigid
                           else "no rigid contact" if contacts else "no contact")]
-    for c in contacts:
+    for j, c in enumerate(contacts):
         if c["obstacle"] == "surface":
             effects.append(f"contact {c['surface']} → {c['master']} ("
                            f"{'two-pass' if c['passes'] == 2 else 'single-pass'}, "
                            f"{'nodal' if c['integration'] == 'nodal' else 'Gauss-point'} integration, "
-                           f"{'frictionless' if c['mu'] == 0 else 'μ = %g' % c['mu']})")
+                           f"{'μ = ' + _mu(scene, path, j) if j in frictional else 'frictionless'})")
     notes = [s.penalty_note for s in settings if s.penalty_note]
     if notes:
         effects.append("automatic penalty (" + "; ".join(notes) + ")")
@@ -26,6 +41,9 @@ def describe_effects(scene, material, settings, num_moving, num_unknowns, symmet
                     (len(scene["body_force"]), "body force"), (num_moving, "prescribed displacement")]:
         if n:
             effects.append(f"{n} {what}{'s' if n > 1 else ''}")
+    if path is not None and not path.implicit:
+        effects.append(f"{len(path.phases)} phase{'s' if len(path.phases) > 1 else ''} ("
+                       + ", ".join(repr(p.name) for p in path.phases) + ")")
     effects.append(CONTROL[scene["steps"]["control"]])
     if scene["steps"]["control"] == "load":
         kind, options = linear_solver_options(scene["solver"], num_unknowns, symmetric)
