@@ -128,6 +128,10 @@ def test_a_rotation_turns_points_about_the_pivot_and_carries_anchors():
     (lambda d: d["phase"][0].update(length=0.0), "phase[0].length", "expected > 0"),
     (lambda d: d["phase"][0].update(lenght=1.0), "phase[0].lenght", "unknown key; did you mean 'length'?"),
     (lambda d: d["bc"][0].update(name="lid"), "bc[1].name", "duplicate bc name 'lid'"),
+    (lambda d: d["phase"][0].update(contact={"wall": {"active": 0}}), "phase[0].contact.wall.active",
+     "expected true or false"),
+    (lambda d: d["phase"][0].update(contact={"wal": {"active": False}}), "phase[0].contact.wal",
+     "no [[contact]] is named 'wal' (contacts: roller, wall, box); did you mean 'wall'?"),
 ])
 def test_bad_phases_are_refused_naming_the_key(edit, key, words):
     data = base()
@@ -145,3 +149,24 @@ def test_a_curve_that_starts_where_the_value_is_is_accepted():
     data = base()
     data["phase"][1]["pressure"]["p"] = [[0.0, 2.0], [1.0, 3.0]]  # phase 1 left it at 2
     assert scene.load(data)["phase"][1]["pressure"]["p"] == [[0.0, 2.0], [1.0, 3.0]]
+
+
+def test_a_contact_is_switched_on_or_off_from_a_phase_start_until_another_phase_says_otherwise():
+    data = base()
+    data["contact"][2]["active"] = False  # the box starts off
+    data["phase"].append({"name": "lift", "contact": {"wall": {"active": False}, "box": {"active": True}}})
+    data["phase"].append({"name": "hold"})
+    path = LoadPath(scene.load(data))
+    wall, box = 1, 2
+    # phases: press, roll, lift, hold
+    assert [path.active(k, wall) for k in range(4)] == [True, True, False, False]
+    assert [path.active(k, box) for k in range(4)] == [False, False, True, True]
+    data["phase"].append({"name": "back", "contact": {"wall": {"active": True}}})
+    path = LoadPath(scene.load(data))
+    assert [path.active(k, wall) for k in range(5)] == [True, True, False, False, True]
+    # switched off: from the phase's start; switched on: the penalty's share ramps in over the phase
+    assert [path.values(2, s)[("active", wall)] for s in (0.0, 0.3, 1.0)] == [0.0, 0.0, 0.0]
+    assert [path.values(4, s)[("active", wall)] for s in (0.0, 0.3, 1.0)] == pytest.approx([0.0, 0.3, 1.0])
+    assert [path.values(1, s)[("active", wall)] for s in (0.0, 1.0)] == [1.0, 1.0]
+    assert [path.switch(k, wall) for k in range(5)] == [None, None, "off", None, "on"]
+    assert [path.switch(k, box) for k in range(5)] == [None, None, "on", None, None]

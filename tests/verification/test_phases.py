@@ -165,3 +165,61 @@ def test_restart_inside_the_second_phase_equals_the_uninterrupted_run(out_dir):
         text = (out_dir / "cut" / "fields.xdmf").read_text()
         times = sorted({float(t) for t in re.findall(r'<Time Value="([^"]+)"', text)})
         assert times == pytest.approx([s["time"] for s in full.steps], abs=1e-12)
+
+
+def test_a_contact_switched_off_and_on_starts_its_friction_afresh(out_dir):
+    """Press, slide forward by d, switch the base off, switch it on (its
+    penalty ramps in over the phase: the block stands still, so no traction
+    builds) and slide back by d. Switched off, the base carries nothing
+    (the stiff block hangs from its lid); switched on, every node starts
+    open with no anchor, so on the way back it sticks for c (from 0 to
+    μ p), not 2c (from −μ p to +μ p) as in the closed cycle: it slips
+    2 (d − c) in all and the base dissipates 2 μ N (d − c) — μ N c more
+    than the closed cycle's μ N (2d − 3c), far beyond the 1e-5 asserted."""
+    phases = [{"name": "press", "bc": {"lid": [0.0, 0.0, -DELTA]}, "steps": {"initial": 0.5, "max": 0.5}},
+              {"name": "forward", "bc": {"lid": [D, 0.0, -DELTA]}},
+              {"name": "off", "contact": {"base": {"active": False}}, "steps": {"initial": 0.5, "max": 0.5}},
+              {"name": "on", "contact": {"base": {"active": True}}, "steps": {"initial": 0.25, "max": 0.25}},
+              {"name": "back", "bc": {"lid": [0.0, 0.0, -DELTA]}}]
+    data = cycle_scene(out_dir, phases)
+    data["solver"]["atol"] = 1e-9  # the hanging stiff block's residual stalls at its round-off (~1e-10)
+    lines = []
+    sim, writer = run(data, log=lines.append)
+    assert any("phase 3 'off'" in m and "contact 'base' switched off" in m for m in lines)
+    assert any("phase 4 'on'" in m and "contact 'base' switched on" in m for m in lines)
+    r = rows(out_dir)
+    off = [row for row in r if row["phase"] == 3]
+    forward_end = [row for row in r if row["phase"] == 2][-1]
+    assert len(off) == 2
+    for row in off:  # nothing carried, nothing dissipated while off
+        assert row["base_fx"] == row["base_fz"] == row["base_closed_nodes"] == 0.0
+        assert row["dissipation"] == forward_end["dissipation"]
+    on = [row for row in r if row["phase"] == 4]
+    for row in on:  # the penalty ramps in: p = s ε_N δ / (1 + s ε_N h / E), no traction, no dissipation
+        s = row["load_factor"]
+        assert row["base_fz"] == pytest.approx(s * EPS_N * DELTA / (1 + s * EPS_N * 1.0 / E), rel=1e-6)
+        assert abs(row["base_fx"]) <= 1e-6 * MU * N
+    back = [row for row in r if row["phase"] == 5]
+    assert all(row["base_fz"] == pytest.approx(N, rel=1e-6) for row in back)
+    assert back[-1]["base_fx"] == pytest.approx(+MU * N, rel=1e-6)
+    assert r[-1]["dissipation"] == pytest.approx(2 * MU * N * (D - C), rel=1e-5)
+    (base,) = sim.contacts
+    slip = base.law.slip_accumulated
+    assert len(slip) == 0 or np.allclose(slip, 2 * (D - C), rtol=1e-5)
+
+
+def test_a_contact_that_starts_switched_off_acts_from_the_phase_that_switches_it_on(out_dir):
+    data = cycle_scene(out_dir, [
+        {"name": "press", "bc": {"lid": [0.0, 0.0, -DELTA]}, "steps": {"initial": 0.5, "max": 0.5}},
+        {"name": "touch", "contact": {"base": {"active": True}}, "steps": {"initial": 0.5, "max": 0.5}}])
+    data["contact"][0]["active"] = False
+    data["solver"]["atol"] = 1e-9  # the displaced stiff block's residual stalls at its round-off (~1e-10)
+    run(data)
+    r = rows(out_dir)
+    assert [row["base_fz"] for row in r if row["phase"] == 1] == [0.0, 0.0]
+    touch = [row for row in r if row["phase"] == 2]
+    assert [row["load_factor"] for row in touch] == [0.5, 1.0]
+    for row in touch:  # the overclosure δ taken up as the penalty ramps in
+        s = row["load_factor"]
+        assert row["base_fz"] == pytest.approx(s * EPS_N * DELTA / (1 + s * EPS_N * 1.0 / E), rel=1e-6)
+    assert touch[-1]["base_fz"] == pytest.approx(N, rel=1e-6)

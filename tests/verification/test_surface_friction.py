@@ -195,3 +195,39 @@ def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path, monke
     assert np.abs(a.law.history.xi - b.law.history.xi).max() <= 1e-10
     assert np.abs(a.law.history.traction - b.law.history.traction).max() <= 1e-10 * np.abs(b.law.history.traction).max() and np.abs(b.law.history.traction).max() > 0
     assert a.law.dissipation == pytest.approx(b.law.dissipation, rel=1e-10, abs=1e-300)
+
+
+def test_switched_off_the_pair_carries_nothing_and_forgets_its_master_points(tmp_path):
+    """Press the slider, drag it (tractions and master points stored), switch
+    the pair off, then on again: off, no force, no closed point, every slave
+    point's stored master point and traction gone (facet −1: the kernel then
+    takes the current point, t = 0); on again, the blocks press as before."""
+    sc = slider_scene()
+    for bc in sc["bc"]:
+        bc["motion"] = [0.0, 0.0, 0.0]
+    sc["bc"][1]["name"] = "slider"
+    sc["phase"] = [{"name": "press", "bc": {"slider": [0.0, 0.0, -PRESS]}},
+                   {"name": "drag", "bc": {"slider": [0.002, 0.0, -PRESS]}},
+                   {"name": "off", "contact": {"interface": {"active": False}}},
+                   {"name": "on", "contact": {"interface": {"active": True}}}]
+    sc["output"]["dir"] = str(tmp_path)
+    sim = Simulation(scene.load(sc), MPI.COMM_SELF, log=lambda *a, **k: None)
+    (c,) = sim.contacts
+    history = c.law.history
+    seen = {}
+    commit = c.commit
+
+    def spy():
+        commit()
+        seen[sim.model.phase] = (history.facet.copy(), np.abs(history.traction).max(), c.on)
+
+    c.commit = spy
+    writer = sim.run()
+    rows = {k: [s for s in writer.steps if s["phase"] == k] for k in (1, 2, 3, 4)}
+    assert np.count_nonzero(seen[1][0] >= 0) > 0 and seen[1][1] > 0  # dragged: master points and tractions
+    assert seen[2][2] is False and np.all(seen[2][0] == -1) and seen[2][1] == 0.0
+    for s in rows[3]:
+        assert s["interface_fz"] == s["interface_closed_nodes"] == 0
+    assert seen[3][2] is True and np.count_nonzero(seen[3][0] >= 0) > 0
+    n_press, n_on = rows[1][-1]["interface_fz"], rows[4][-1]["interface_fz"]
+    assert n_on == pytest.approx(n_press, rel=0.05) and n_on != 0.0

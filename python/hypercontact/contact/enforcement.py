@@ -25,6 +25,9 @@ class Penalty:
     def commit(self):
         pass
 
+    def forget(self):
+        pass
+
     def restore(self):
         pass
 
@@ -49,6 +52,10 @@ class AugmentedLagrangian:
 
     def commit(self):
         self.committed = self.multipliers.copy()
+
+    def forget(self):
+        """The pair is switched off: no multiplier carries over."""
+        self.multipliers = np.zeros_like(self.multipliers)
 
     def restore(self):
         self.multipliers = self.committed.copy()

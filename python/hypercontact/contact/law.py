@@ -17,6 +17,9 @@ class Frictionless:
     def commit(self, state, x):
         pass
 
+    def forget(self, x):
+        pass
+
     def observables(self):
         return {}
 
@@ -61,6 +64,18 @@ class Coulomb:
         self.slip_accumulated = self.slip_accumulated + np.linalg.norm(state.slip_increment, axis=1)
         self.committed = state
         self.history.store(state, x)
+
+    def forget(self, x):
+        """A converged step of a switched-off pair: no point carries a
+        traction or an anchor into the next step (each starts open, from
+        where it is: x), nothing slipped or was dissipated in this step; the
+        totals accumulated so far stay."""
+        old = self.status_committed
+        self.flips_step = 0
+        self.status_committed = np.zeros_like(old)
+        self.dissipation_step = 0.0
+        self.committed = None
+        self.history.forget(x)
 
     def stick_slip_counts(self):
         """(sticking, slipping) slave points at the last converged step, all ranks."""

@@ -13,6 +13,9 @@ from mpi4py import MPI
 
 from . import kernels
 from .kernels import SLIP, STICK
+from .law import Frictionless
+
+OFF = Frictionless()  # the law a switched-off pair is evaluated with (gaps only)
 
 
 class Contact:
@@ -25,6 +28,10 @@ class Contact:
         self.comm = geometry.comm
         self.evaluation = None
         self.index = 0  # of its [[contact]] entry (the load path's channels)
+        #: the share of ε_N the pair acts with (the load path's ("active", j)): 1; ramped 0 → 1 over a
+        #: phase that switches it on; 0: switched off — no force, no tangent, and each commit
+        #: forgets the friction history (switched on again, every point starts open)
+        self.scale = 1.0
 
     @property
     def frictional(self):
@@ -42,19 +49,31 @@ class Contact:
     def set_load_factor(self, load_factor):
         self.geometry.set_load_factor(load_factor)
 
-    def set_path_values(self, translation, angle, mu):
+    @property
+    def on(self):
+        return self.scale > 0.0
+
+    def set_path_values(self, translation, angle, mu, scale=1.0):
         """Where the load path has the obstacle (rigid: translation from its
-        place in the scene, rotation angle) and μ now (a frictional law)."""
+        place in the scene, rotation angle), μ now (a frictional law) and
+        the share of its penalty the pair acts with (0: switched off)."""
         if translation is not None:
             self.geometry.set_pose(translation, angle)
         if self.law.frictional and self.law.mu != mu:
             self.law.mu = float(mu)
+        self.scale = float(scale)
 
     # --- one evaluation per iterate ------------------------------------------------
     def prepare(self, u):
-        """Evaluate the contact at displacement u (collective for surfaces)."""
-        self.evaluation = kernels.evaluate(self.geometry, self.law, self.enforcement.multipliers, self.eps_n,
-                                           self.smoothing, self.geometry.coordinates(u))
+        """Evaluate the contact at displacement u (collective for surfaces).
+        Switched off: the gaps only (a frictionless evaluation whose
+        pressure, force and elements nothing reads)."""
+        if self.on:
+            self.evaluation = kernels.evaluate(self.geometry, self.law, self.enforcement.multipliers,
+                                               self.scale * self.eps_n, self.smoothing, self.geometry.coordinates(u))
+        else:
+            self.evaluation = kernels.evaluate(self.geometry, OFF, np.zeros_like(self.enforcement.multipliers),
+                                               self.eps_n, self.smoothing, self.geometry.coordinates(u))
 
     @property
     def state(self):
@@ -70,19 +89,22 @@ class Contact:
         """Total force of the master on the slave body (all ranks), at u or at the prepared state."""
         if u is not None:
             self.prepare(u)
-        return self.comm.allreduce(self.state.force, op=MPI.SUM)
+        force = self.state.force if self.on else np.zeros(3)
+        return self.comm.allreduce(force, op=MPI.SUM)
 
     def num_closed(self, u=None):
-        """Closed slave points (all ranks), at u or at the prepared state."""
+        """Closed slave points (all ranks), at u or at the prepared state (0 switched off)."""
         if u is not None:
             self.prepare(u)
-        return self.comm.allreduce(self.state.num_closed, op=MPI.SUM)
+        return self.comm.allreduce(self.state.num_closed if self.on else 0, op=MPI.SUM)
 
     def add_residual(self, b):
-        self.evaluation.add_residual(b)
+        if self.on:
+            self.evaluation.add_residual(b)
 
     def add_tangent(self, A):
-        self.evaluation.add_tangent(A)
+        if self.on:
+            self.evaluation.add_tangent(A)
 
     # --- pairing and pattern -------------------------------------------------------
     def update_pairing(self, u, fresh):
@@ -100,6 +122,8 @@ class Contact:
     def active_set_signature(self):
         """(number of active points and a checksum of who they are, all ranks): a
         change of the active set changes the signature."""
+        if not self.on:
+            return self._sum([0, 0])
         state = self.state
         active = self.geometry.active(state, self.augmented)
         if self.deformable:
@@ -113,6 +137,8 @@ class Contact:
         """(sticking, slipping and checksums of both, all ranks); None without friction."""
         if not self.frictional:
             return None
+        if not self.on:
+            return self._sum([0, 0, 0, 0, 0])
         status = self.state.state
         ids = self.geometry.point_ids() if self.deformable else self.geometry.ids
         stick, slip = ids[status == STICK], ids[status == SLIP]
@@ -121,9 +147,11 @@ class Contact:
     def point_status(self):
         """Per slave point of this rank: 0 open, 1 stick, 2 slip (a closed
         frictionless point slides: 2)."""
+        status = np.zeros(len(self.geometry.point_area), np.int8)
+        if not self.on:
+            return status
         if self.frictional:
             return self.state.state.astype(np.int8)
-        status = np.zeros(len(self.geometry.point_area), np.int8)
         status[self.geometry.closed(self.state, self.augmented)] = 2
         return status
 
@@ -136,15 +164,22 @@ class Contact:
         """Largest penetration ⟨−g⟩ (all ranks), at u or at the prepared state."""
         if u is not None:
             self.prepare(u)
-        return self.geometry.max_penetration(self.state)
+        return self.geometry.max_penetration(self.state) if self.on else 0.0
 
     def augment(self):
-        self.enforcement.augment(self.state)
+        if self.on:
+            self.enforcement.augment(self.state)
 
     # --- steps ---------------------------------------------------------------------
     def commit(self):
-        """The prepared (converged) evaluation becomes the history of the next step."""
-        self.law.commit(self.state, self.evaluation.x)
+        """The prepared (converged) evaluation becomes the history of the next
+        step; switched off, the friction history and the multipliers are
+        forgotten (the points start open when the pair is switched on)."""
+        if self.on:
+            self.law.commit(self.state, self.evaluation.x)
+        else:
+            self.law.forget(self.evaluation.x)
+            self.enforcement.forget()
         self.enforcement.commit()
 
     def restore(self):
@@ -173,7 +208,7 @@ class Contact:
         the obstacle's displacement, the force of the master on the slave body
         (normal and tangential), closed points, and with friction the
         dissipation (step, accumulated, N mm), stick/slip counts and flips."""
-        force = self.force()
+        force = self.force()  # zero switched off
         out = {"displacement": self.geometry.displacement(), "fx": float(force[0]), "fy": float(force[1]),
                "fz": float(force[2]), "closed_nodes": self.num_closed()}
         out.update(self.law.observables())
@@ -187,7 +222,7 @@ class Contact:
         if nodes is None:
             return None
         state = self.state
-        fields = {"gap": state.gap, "pressure": state.pressure}
+        fields = {"gap": state.gap, "pressure": state.pressure if self.on else np.zeros_like(state.pressure)}
         if self.frictional:
             fields.update(self.law.point_fields(self.geometry.point_area))
         else:

@@ -161,6 +161,13 @@ class RigidFrictionHistory:
         self.lam_committed = self.geometry.load_factor
         self.pose_committed = self.geometry.pose
 
+    def forget(self, x):
+        """No traction carried over; each node's anchor is where it is (x)."""
+        self.traction = np.zeros_like(self.traction)
+        self.positions = np.ascontiguousarray(x).copy()
+        self.lam_committed = self.geometry.load_factor
+        self.pose_committed = self.geometry.pose
+
     def pattern_nodes(self):
         return None
 

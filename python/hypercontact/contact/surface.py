@@ -229,6 +229,12 @@ class SurfaceFrictionHistory:
         self.xi = np.ascontiguousarray(np.where(paired[:, None], state.xi, 0.0))
         self.traction = np.ascontiguousarray(np.where(paired[:, None], state.traction, 0.0))
 
+    def forget(self, x=None):
+        """No master point and no traction carried over (facet −1: the kernel takes the current point, t = 0)."""
+        self.facet = np.full_like(self.facet, -1)
+        self.xi = np.zeros_like(self.xi)
+        self.traction = np.zeros_like(self.traction)
+
     def rebase(self):
         pass
 

@@ -112,7 +112,8 @@ class Model:
         for c in self.contacts:
             c.set_load_factor(s)
             c.set_path_values(values[("motion", c.index)] if ("motion", c.index) in values else None,
-                              values.get(("rotation", c.index), 0.0), values[("mu", c.index)])
+                              values.get(("rotation", c.index), 0.0), values[("mu", c.index)],
+                              values[("active", c.index)])
 
     def current_loads(self):
         """{(section, i): value} of the loads now."""

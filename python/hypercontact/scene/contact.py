@@ -13,7 +13,7 @@ from typing_extensions import Annotated
 from .base import SceneModel, tables
 from .builders import choices
 from .errors import HIDDEN_LOCATIONS, Invalid, describe, printable
-from .fields import (COORDINATES, LENGTH, NON_NEGATIVE, NON_ZERO_VECTOR, POSITIVE, from_to, integer, number,
+from .fields import (COORDINATES, LENGTH, Boolean, NON_NEGATIVE, NON_ZERO_VECTOR, POSITIVE, from_to, integer, number,
                      one_of, string, vector)
 
 OBSTACLE_CHOICES = '"plane", "box", "cylinder", "sphere" (rigid) or "surface" (a deformable body\'s surface)'
@@ -43,6 +43,8 @@ class Contact(SceneModel):
     max_augmentations: integer(from_to(1, 1000)) = 20
     mu: number(NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")) = 0.0
     eps_t: _penalty("0 (= eps_n)") = 0.0
+    #: false: the pair starts switched off (a phase switches it on: phase[k].contact.<name>.active)
+    active: Boolean = True
 
     @validator("name")
     def non_empty_name(cls, name):

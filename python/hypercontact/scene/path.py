@@ -1,6 +1,6 @@
 """The load path of a scene: every value a run drives — each fixed bc
 component, each load, each rigid obstacle's translation and rotation, each
-contact's μ — as a function of (phase k, its parameter s in [0, 1]). Pure:
+contact's μ and whether it acts — as a function of (phase k, its parameter s in [0, 1]). Pure:
 no mesh, no solver (tested in tests/unit; the model applies it, the rules check it).
 
 Without [[phase]] the scene is one phase in which every motion and load
@@ -159,6 +159,18 @@ class LoadPath:
                 self.channels[("rotation", j)] = Channel(0.0, rotation)
             mu = [None] * n if self.implicit else self._per_phase(given, "contact", c["name"], "mu")
             self.channels[("mu", j)] = Channel(float(c["mu"]), mu)
+            # the pair's share of its penalty: 1 on, 0 off. Switched off, it is 0 from the phase's
+            # first step (a point at s = 0 holds through the phase); switched on, it ramps in, 0 → 1
+            # over the phase, so that an overclosure is resolved in steps the controller can cut
+            active = [None] * n if self.implicit else self._per_phase(given, "contact", c["name"], "active")
+            value, points = (1.0 if c.get("active", True) else 0.0), []
+            for a in active:
+                if a is None or float(a) == value:
+                    points.append(None)
+                else:
+                    value = float(a)
+                    points.append([[1.0, 1.0]] if a else [[0.0, 0.0]])
+            self.channels[("active", j)] = Channel(1.0 if c.get("active", True) else 0.0, points)
 
     # --- reading --------------------------------------------------------------------
     def values(self, k, s):
@@ -179,6 +191,15 @@ class LoadPath:
         """The largest μ contact j has anywhere on the path."""
         ch = self.channels[("mu", j)]
         return max([ch.starts[0]] + [v for points in ch.points if points for _, v in points])
+
+    def active(self, k, j):
+        """Whether contact j acts at the end of phase k (switched on in it: ramped in by its end)."""
+        return self.channels[("active", j)].at(k, 1.0) > 0.0
+
+    def switch(self, k, j):
+        """'on', 'off' or None: what phase k does to contact j."""
+        before = self.channels[("active", j)].starts[k] > 0.0
+        return None if before == self.active(k, j) else ("on" if self.active(k, j) else "off")
 
     def rotates(self, j):
         ch = self.channels.get(("rotation", j))
@@ -208,6 +229,8 @@ def check_no_jumps(path):
     names = {"bc": "bc", "pressure": "pressure", "traction": "traction", "body_force": "body_force",
              "motion": "contact", "rotation": "contact", "mu": "contact"}
     for key, ch in path.channels.items():
+        if key[0] == "active":  # a switch, not a curve: it acts from the phase's start
+            continue
         for k, points in enumerate(ch.points):
             if not points or points[0][0] != 0.0:
                 continue

@@ -27,7 +27,7 @@ from pydantic import validator
 
 from .base import SceneModel
 from .errors import Invalid, describe
-from .fields import POSITIVE, Table, is_number, number, string
+from .fields import POSITIVE, Boolean, Table, is_number, number, string
 
 #: How a curve is written, for the messages.
 CURVE_HELP = ("a value at the end of the phase, or a curve: a list of points [s, value] with 0 <= s <= 1 "
@@ -93,11 +93,14 @@ class PhaseContact(SceneModel):
     """What a phase changes of a [[contact]]: the rigid obstacle's
     translation from its place in the [[contact]] entry, its rotation angle
     (radians, right-handed about rotation_axis through rotation_point,
-    which moves with the translation), the friction coefficient."""
+    which moves with the translation), the friction coefficient, and
+    whether the pair acts at all (``active``: from the phase's first step
+    on, until a later phase says otherwise)."""
 
     motion: Optional[VectorCurve] = None
     rotation: Optional[ScalarCurve] = None
     mu: Optional[ScalarCurve] = None
+    active: Optional[Boolean] = None
 
     @validator("mu")
     def non_negative_mu(cls, points):

@@ -164,7 +164,12 @@ class Run:
                 writer.start_phase(k)
                 if not model.path.implicit:
                     spec = model.path.phases[k]
-                    self.log(f"phase {k + 1} {spec.name!r}: τ from {spec.start:g} to {spec.start + spec.length:g}")
+                    switched = "".join(
+                        f"; contact {c.name!r} switched " + ("on (its penalty ramped in over the phase)"
+                                                             if model.path.switch(k, c.index) == "on" else "off")
+                        for c in model.contacts if model.path.switch(k, c.index))
+                    self.log(f"phase {k + 1} {spec.name!r}: τ from {spec.start:g} to {spec.start + spec.length:g}"
+                             + switched)
                 if isinstance(self.driver, LoadStepping):
                     self.driver.run(observers, out_dir, resumed)
                 else:
