@@ -223,3 +223,35 @@ def test_a_contact_that_starts_switched_off_acts_from_the_phase_that_switches_it
         s = row["load_factor"]
         assert row["base_fz"] == pytest.approx(s * EPS_N * DELTA / (1 + s * EPS_N * 1.0 / E), rel=1e-6)
     assert touch[-1]["base_fz"] == pytest.approx(N, rel=1e-6)
+
+
+def test_lift_off_releases_the_friction_spring_by_the_backward_euler_return_map(out_dir):
+    """Press, slide forward by d (each node's spring at μ p), then lift the
+    lid from −δ to +δ in 10 steps: the penetration falls by δ/5 per step to
+    0 at the 5th and the block lifts off (no force, no closed node). The
+    shrinking cone μ p_i makes each spring slip back to it; by the
+    return map (backward Euler, the 1D oracle worked by hand) step i
+    dissipates μ p_i (μ p_{i−1} − μ p_i) / ε_T per unit area with
+    p_i = P (1 − i/5): in all μ² P² / ε_T × Σ_i (1 − i/5)/5 = 0.4 μ N c."""
+    data = cycle_scene(out_dir, [
+        {"name": "press", "bc": {"lid": [0.0, 0.0, -DELTA]}, "steps": {"initial": 0.5, "max": 0.5}},
+        {"name": "forward", "bc": {"lid": [D, 0.0, -DELTA]}},
+        {"name": "lift", "bc": {"lid": [D, 0.0, +DELTA]}}])
+    data["solver"]["atol"] = 1e-9  # the lifted stiff block's residual stalls at its round-off (~1e-10)
+    data["contact"][0]["smoothing"] = 0.0  # the 5th step lands on g = 0: the sharp law's p = 0 there
+    sim, _ = run(data)
+    r = rows(out_dir)
+    lift = [row for row in r if row["phase"] == 3]
+    forward_end = [row for row in r if row["phase"] == 2][-1]
+    assert len(lift) == 10
+    for i, row in enumerate(lift[:5], start=1):  # still touching: p_i = P (1 − i/5), on the cone
+        assert row["base_fz"] == pytest.approx(N * (1 - i / 5), rel=1e-5, abs=1e-9 * N)
+        assert row["base_fx"] == pytest.approx(-MU * row["base_fz"], rel=1e-5, abs=1e-9 * N)
+    for row in lift[5:]:  # lifted off
+        assert row["base_fz"] == row["base_fx"] == row["base_closed_nodes"] == 0.0
+    released = lift[-1]["dissipation"] - forward_end["dissipation"]
+    # to the block's shear compliance: its bottom follows the spring by ε_T h / G = 1e-4 of the slip
+    assert released == pytest.approx(0.4 * MU * N * C, rel=1e-3)
+    assert released != pytest.approx(0.5 * MU * N * C, rel=0.1)  # not the continuous ∫ μ p dp μ/ε_T
+    (base,) = sim.contacts
+    assert np.all(base.state.traction == 0.0)

@@ -68,7 +68,7 @@ class Model:
         the λ Constant (the load factor of the phase: what drivers and tests read)."""
         self.load_factor = dfx.constant(self.body.mesh, 0.0)
         self.loads = Loads(self.scene, self.body.mesh, self.body.facet_tags, self.tag, vol.trial_u, vol.test_u)
-        self.q_form = self.loads.q
+        self.q_form = self.loads.q if not self.scene.get("phase") else self.loads.q_rates
         if self.loads.form is None:
             return vol.R, vol.J
         dw = ufl.TrialFunction(self.w.function_space)
@@ -114,6 +114,11 @@ class Model:
             c.set_path_values(values[("motion", c.index)] if ("motion", c.index) in values else None,
                               values.get(("rotation", c.index), 0.0), values[("mu", c.index)],
                               values[("active", c.index)])
+
+    def set_rates(self, phase):
+        """q_form = ∂R/∂s of ``phase`` (continuation inside phases; a no-op without phases)."""
+        if not self.path.implicit:
+            self.loads.set_rates(self.path.rates(phase))
 
     def current_loads(self):
         """{(section, i): value} of the loads now."""

@@ -44,8 +44,10 @@ def describe_effects(scene, material, settings, num_moving, num_unknowns, symmet
     if path is not None and not path.implicit:
         effects.append(f"{len(path.phases)} phase{'s' if len(path.phases) > 1 else ''} ("
                        + ", ".join(repr(p.name) for p in path.phases) + ")")
-    effects.append(CONTROL[scene["steps"]["control"]])
-    if scene["steps"]["control"] == "load":
+    controls = [ph.steps["control"] for ph in path.phases] if path is not None else [scene["steps"]["control"]]
+    in_order = [c for i, c in enumerate(controls) if i == 0 or c != controls[i - 1]]
+    effects.append(", then ".join(CONTROL[c] for c in in_order))
+    if "load" in controls:
         kind, options = linear_solver_options(scene["solver"], num_unknowns, symmetric)
         pc = {**options, **scene["solver"]["petsc"]}.get("pc_type")  # the scene's PETSc options win
         direct = {"cholesky": "LDLᵀ, symmetric tangent", "lu": "LU"}.get(pc, pc)

@@ -38,13 +38,14 @@ class Loads:
     load path: R_loads = Σ_k L_k(u; value_k) (follower pressures, dead
     tractions, dead body forces: each linear in its value). ``q`` = ∂R/∂λ
     of the scene without phases (value_k = λ × the scene's value), for
-    continuation; None without loads."""
+    continuation; None without loads. ``q_rates``: the same with each
+    value's rate in a phase (:meth:`set_rates`)."""
 
     def __init__(self, scene, mesh, facet_tags, tag_of, trial_u, test_u):
         qdeg = scene["discretisation"]["quadrature_degree"]
         ds = dfx.facet_integration_measure(mesh, facet_tags, qdeg)
         dx = ufl.dx(domain=mesh, metadata={"quadrature_degree": qdeg})
-        self.constants, terms, reference = {}, [], []
+        self.constants, self.rates, terms, reference, rate_terms = {}, {}, [], [], []
         for section, size in LOADS.items():
             for i, load in enumerate(scene[section]):
                 c = dfx.constant(mesh, 0.0 if size == 1 else np.zeros(3))
@@ -56,10 +57,19 @@ class Loads:
                 term = (loads.follower_pressure if section == "pressure" else
                         (lambda u, v, value, m: loads.dead_load(v, value, m)))
                 terms.append(term(trial_u, test_u, c, measure))
+                r = dfx.constant(mesh, 0.0 if size == 1 else np.zeros(3))
+                self.rates[(section, i)] = r
+                rate_terms.append(term(trial_u, test_u, r, measure))
                 if load["value"] is not None:
                     reference.append(term(trial_u, test_u, load["value"], measure))
         self.form = sum(terms[1:], terms[0]) if terms else None
         self.q = sum(reference[1:], reference[0]) if reference and len(reference) == len(terms) else None
+        #: ∂R/∂s of a phase: the loads at their rates (set_rates), for continuation inside phases
+        self.q_rates = sum(rate_terms[1:], rate_terms[0]) if rate_terms else None
+
+    def set_rates(self, rates):
+        for key, c in self.rates.items():
+            c.value = rates[key]
 
     def set_values(self, values):
         for key, c in self.constants.items():

@@ -106,6 +106,7 @@ class LoadPath:
                                          {**scene["solver"], **ph.get("solver", {})}, ph))
             t += length
         self.channels = {}
+        self.ended = {}  # phase → the parameter s it ended at, where not 1 (continuation phases)
         self._bcs(scene, given)
         self._loads(scene, given)
         self._contacts(scene, given)
@@ -191,6 +192,36 @@ class LoadPath:
         """The largest μ contact j has anywhere on the path."""
         ch = self.channels[("mu", j)]
         return max([ch.starts[0]] + [v for points in ch.points if points for _, v in points])
+
+    def rates(self, k):
+        """∂value/∂s of every load in phase k ({(section, i): rate}): a
+        continuation phase drives its loads linearly, from where the phase
+        starts to its end value."""
+        out = {}
+        for key, ch in self.channels.items():
+            if key[0] in LOADS:
+                points = ch.points[k]
+                out[key] = _sub(points[-1][1], ch.starts[k]) if points else _scale(0.0, ch.starts[k])
+        return out
+
+    def end_phase_at(self, k, s):
+        """Phase k ended at parameter s, not 1 (a continuation phase stops when
+        its probe reaches stop_value): the phases after it start from the
+        values there, and their τ from start_k + s × length_k."""
+        if s == 1.0:
+            return
+        self.ended[k] = s
+        for ch in self.channels.values():
+            value = ch.at(k, s)
+            for j in range(k + 1, len(ch.points)):
+                ch.starts[j] = value
+                if ch.points[j]:
+                    value = ch.points[j][-1][1]
+            ch.end = value
+        t = self.time(k, s)
+        for ph in self.phases[k + 1:]:
+            ph.start = t
+            t += ph.length
 
     def active(self, k, j):
         """Whether contact j acts at the end of phase k (switched on in it: ramped in by its end)."""

@@ -170,7 +170,7 @@ def continuation_needs_a_stop_probe_and_a_load(s):
     """Arc-length and displacement control follow the load λ × (pressures,
     tractions, body forces) until a probe reaches stop_value."""
     control, probes = s.steps.control, s.output.probes
-    if control == "load":
+    if control == "load" or s.phase:  # with [[phase]]: phases_have_valid_settings
         return
     if s.steps.stop_probe not in probes:
         raise Invalid(f"{control} control needs a probe of output.probes (found "
@@ -192,8 +192,15 @@ def continuation_needs_fixed_contacts(s):
     control = s.steps.control
     if control == "load":
         return
+    _continuation_contacts(s, control)
     if any(any(c.motion) for c in s.contact if isinstance(c, RigidContact)):
         raise Invalid(f"{control} control with moving obstacles is not supported yet", ("steps", "control"))
+    if any(any(bc.motion) for bc in s.bc):
+        raise Invalid(f"{control} control with prescribed motion is not supported yet", ("steps", "control"))
+
+
+
+def _continuation_contacts(s, control):
     for i, c in enumerate(s.contact):
         if isinstance(c, SurfaceContact):
             raise Invalid(f"{control} control with a deformable master (obstacle = \"surface\") is not supported "
@@ -202,11 +209,6 @@ def continuation_needs_fixed_contacts(s):
         if c.enforcement == "augmented_lagrangian":
             raise Invalid(f"the augmented Lagrangian's updates run between the Newton solves of load control; with "
                           f"{control} control use \"penalty\"", ("contact", i, "enforcement"))
-    if any(any(bc.motion) for bc in s.bc):
-        raise Invalid(f"{control} control with prescribed motion is not supported yet", ("steps", "control"))
-
-
-
 
 
 # --- [[phase]] ----------------------------------------------------------------------------------
@@ -316,14 +318,36 @@ def phases_name_what_exists(s):
 
 def phases_have_valid_settings(s):
     """A phase's [steps] and [solver] keys are those of the scene's tables
-    (checked with the scene's other keys); phases run under load control."""
+    (checked with the scene's other keys); a continuation phase (arc length,
+    displacement control) drives loads only, each linearly to its end value,
+    until its stop probe reaches stop_value."""
     for k, ph in enumerate(s.phase):
         steps = _nested(Steps, {**s.steps.dict(), **ph.steps}, ("phase", k, "steps"))
         _nested(Solver, {**s.solver.dict(), **ph.solver}, ("phase", k, "solver"))
         if steps.control != "load":
-            where = ("phase", k, "steps", "control") if "control" in ph.steps else ("steps", "control")
-            raise Invalid(f"phases run under load control; {steps.control!r} control in a phase is not "
-                          "supported yet", where)
+            _continuation_phase(s, k, ph, steps)
+
+
+def _continuation_phase(s, k, ph, steps):
+    control = steps.control
+    here = lambda key: ("phase", k, "steps", key) if key in ph.steps else ("steps", key)  # noqa: E731
+    if steps.stop_probe not in s.output.probes:
+        raise Invalid(f"phase[{k}] runs under {control} control, which needs a probe of output.probes as its "
+                      f"stop_probe (found {printable(repr(steps.stop_probe), 60)}; probes: "
+                      f"{printable(', '.join(s.output.probes) or 'none', 200)})", here("stop_probe"))
+    for key in ("bc", "contact"):
+        if getattr(ph, key):
+            raise Invalid(f"a phase under {control} control drives loads only: move the bcs and obstacles, "
+                          f"change μ or switch contacts in a load-control phase", ("phase", k, key))
+    driven = [(section, name, points) for section in LOAD_SECTIONS for name, points in getattr(ph, section).items()]
+    if not driven:
+        raise Invalid(f"a phase under {control} control needs a load it drives (phase[{k}].pressure, .traction "
+                      "or .body_force)", here("control"))
+    for section, name, points in driven:
+        if len(points) != 1 or points[0][0] != 1.0:
+            raise Invalid(f"a phase under {control} control drives its loads linearly: give the value at the "
+                          "phase's end, not a curve", ("phase", k, section, name))
+    _continuation_contacts(s, control)
 
 
 def phase_curves_do_not_jump(s):

@@ -2,6 +2,7 @@
 continuation), with observers — the results writer, the checkpoint, the
 console — told about every converged step and every failed attempt."""
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from petsc4py import PETSc
@@ -20,7 +21,12 @@ class Observers:
 
     def __init__(self, run, writer):
         self.run, self.writer = run, writer
-        self.model, self.steps, self.log = run.model, run.scene["steps"], run.log
+        self.model, self.log = run.model, run.log
+
+    @property
+    def steps(self):
+        """The [steps] of the phase running (the scene's, with the phase's keys)."""
+        return self.run.driver.scene["steps"]
 
     def steps_written(self):
         return len(self.writer.steps)
@@ -46,9 +52,9 @@ class Observers:
     def converged_path(self, lam, its, norms, reached, target, controller, du_prev):
         """A converged continuation step."""
         with self.run.timers("output"):
-            row = self.writer.write_step(lam, its, norms, self.run.split())
+            row = self.writer.write_step(lam, its, norms, self.run.split(), phase=self.model.phase)
         st = self.steps
-        self.log(f"step {row['step']:3d}  λ = {lam:.5f}  {st['stop_probe']} u{st['stop_component']} = "
+        self.log(f"step {row['step']:3d}  {self.run.phase_label()}λ = {lam:.5f}  {st['stop_probe']} u{st['stop_component']} = "
                  f"{reached:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}{self.run.eta(reached / target)}")
         self.run.save_checkpoint(self.writer, controller, du_prev=du_prev)
 
@@ -68,6 +74,8 @@ class Run:
         self.model, self.scene, self.timers, self.log = model, scene, timers, log
         self.fail_attempt = fail_attempt
         self.driver = None  # built by each run: the SNES takes the scene's PETSc options then
+        #: continuation phases among load-control ones time their linear solves here (split() adds them)
+        self.bordered_timers = _Aside(timers, "linear solve")
 
     def phase_label(self):
         """'phase 2 "slide"  ' in a scene with phases, else ''."""
@@ -82,7 +90,9 @@ class Run:
         scene = {**self.scene, "steps": spec.steps, "solver": spec.solver}
         if scene["steps"]["control"] == "load":
             return LoadStepping(self.model, scene, self.timers, self.log, self.fail_attempt)
-        return PathFollowing(self.model, scene, self.timers, self.log)
+        self.model.set_rates(phase)  # q = ∂R/∂s of the phase's loads
+        mixed = any(ph.steps["control"] == "load" for ph in self.model.path.phases)
+        return PathFollowing(self.model, scene, self.bordered_timers if mixed else self.timers, self.log)
 
     def _start(self):
         PETSc.Log.begin()
@@ -94,10 +104,10 @@ class Run:
         """The timers, with the linear solve = SNES time less residual and
         Jacobian evaluation (factorisation, triangular solves and line-search
         vector work); continuation times its own solves."""
-        if self.scene["steps"]["control"] == "load":
+        if any(ph.steps["control"] == "load" for ph in self.model.path.phases):
             t = {name: e.getPerfInfo()["time"] - self._t0[name] for name, e in self._events.items()}
             self.timers.seconds["linear solve"] = max(t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"],
-                                                      0.0)
+                                                      0.0) + self.bordered_timers.get("linear solve")
         return self.timers
 
     def eta(self, progress):
@@ -117,7 +127,8 @@ class Run:
                 meta, data = c.state_dict()
                 contacts[c.name] = meta
                 arrays.update({f"{c.name}.{k}": v for k, v in data.items()})
-            state = {**controller, "phase": self.model.phase, "steps": writer.steps,
+            state = {**controller, "phase": self.model.phase, "phase_ends": self.model.path.ended,
+                     "steps": writer.steps,
                      "limit_points": writer.limit_points, "failed_attempts": writer.failed_attempts,
                      "phases": writer.phases, "contacts": contacts}
             self.checkpoint.save(state, w=self.model.w.x.array, **arrays)
@@ -130,9 +141,11 @@ class Run:
             prefix = f"{c.name}."
             c.load_state_dict(state["contacts"][c.name],
                               {k[len(prefix):]: v for k, v in arrays.items() if k.startswith(prefix)})
+        for k, s in sorted(state.get("phase_ends", {}).items()):
+            model.path.end_phase_at(int(k), s)  # continuation phases that ended before s = 1
         model.phase = state.get("phase", 0)
         if state["steps"]:
-            last, st = state["steps"][-1], self.scene["steps"]
+            last, st = state["steps"][-1], model.path.phases[model.phase].steps
             self._progress0 = (model.path.progress(model.phase, last["load_factor"]) if st["control"] == "load" else
                                last[f"{st['stop_probe']}_u{st['stop_component']}"] / st["stop_value"])
 
@@ -172,10 +185,13 @@ class Run:
                              + switched)
                 if isinstance(self.driver, LoadStepping):
                     self.driver.run(observers, out_dir, resumed)
-                else:
+                    last = (k, 1.0)
+                else:  # continuation ends where its probe reaches stop_value: the next phase starts there
                     self.driver.run(observers, out_dir, resumed, arrays)
+                    last = (k, float(model.load_factor.value))
+                    if not model.path.implicit:
+                        model.path.end_phase_at(k, last[1])
                 writer.end_phase(k, "completed")
-                last = (k, 1.0)
         except BaseException as err:
             if writer.steps:
                 last = (writer.steps[-1].get("phase", 1) - 1 if not model.path.implicit else model.phase,
@@ -188,3 +204,26 @@ class Run:
             raise
         writer.finish("completed", "", self.split())
         return writer
+
+
+class _Aside:
+    """Timers that keep one phase name's seconds to themselves (``get``) and
+    pass every other name on."""
+
+    def __init__(self, timers, name):
+        self.timers, self.name, self.seconds = timers, name, 0.0
+
+    @contextmanager
+    def __call__(self, phase):
+        if phase != self.name:
+            with self.timers(phase):
+                yield
+            return
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.seconds += time.perf_counter() - t0
+
+    def get(self, phase):
+        return self.seconds if phase == self.name else self.timers.get(phase)
