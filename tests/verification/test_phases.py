@@ -167,6 +167,7 @@ def test_restart_inside_the_second_phase_equals_the_uninterrupted_run(out_dir):
         assert times == pytest.approx([s["time"] for s in full.steps], abs=1e-12)
 
 
+@pytest.mark.mpi
 def test_a_contact_switched_off_and_on_starts_its_friction_afresh(out_dir):
     """Press, slide forward by d, switch the base off, switch it on (its
     penalty ramps in over the phase: the block stands still, so no traction
