@@ -11,6 +11,7 @@ from mpi4py import MPI
 
 from .. import _cpp
 from .. import _dolfinx as dfx
+from ..scene.contact import rotation_pivot
 from ..scene.path import rotation_matrix
 from .surface_mesh import nodal_areas
 
@@ -73,11 +74,7 @@ class RigidObstacle:
     def __init__(self, spec, V, facet_tags, tag, constrained):
         self.kind = spec["obstacle"]
         self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center") if k in spec}
-        axis = spec["rotation_axis"] if any(spec.get("rotation_axis", ())) else spec.get("axis")
-        pivot = spec.get("rotation_point")
-        if pivot is None:
-            pivot = spec.get("center", spec.get("point"))
-        self.axis, self.pivot = axis, pivot
+        self.axis, self.pivot = rotation_pivot(spec)
         self.comm = V.mesh.comm
         area = nodal_areas(V, facet_tags, tag)
         self.nodes = np.flatnonzero(area > 0.0).astype(np.int32)
@@ -105,9 +102,6 @@ class RigidObstacle:
     def displacement(self):
         """How far the obstacle has moved from its place in the scene: |t|."""
         return float(np.linalg.norm(self.pose.t))
-
-    def rotation(self):
-        return self.pose.angle
 
     def coordinates(self, u):
         """Current coordinates of this rank's slave nodes."""

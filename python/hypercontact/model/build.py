@@ -120,10 +120,6 @@ class Model:
         if not self.path.implicit:
             self.loads.set_rates(self.path.rates(phase))
 
-    def current_loads(self):
-        """{(section, i): value} of the loads now."""
-        return {key: c.value.copy() if c.value.shape else float(c.value) for key, c in self.loads.constants.items()}
-
     def sync_displacement(self):
         """u from the unknown (a no-op unless the formulation is mixed)."""
         if self._u_dofs is not None:

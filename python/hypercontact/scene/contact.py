@@ -66,6 +66,18 @@ class RigidContact(Contact):
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]
 
 
+def rotation_pivot(entry):
+    """(axis, point) a [[contact]] entry (a plain dict) is rotated about by
+    the phases: rotation_axis, or the cylinder's own axis; rotation_point, or
+    the sphere's center, or the cylinder's or plane's point (None where the
+    entry has neither)."""
+    axis = entry["rotation_axis"] if any(entry.get("rotation_axis") or ()) else entry.get("axis")
+    point = entry.get("rotation_point")
+    if point is None:
+        point = entry.get("center", entry.get("point"))
+    return axis, point
+
+
 class TurningContact(RigidContact):
     """A rigid obstacle the phases may also rotate, about rotation_axis
     through rotation_point (the point moves with the translation)."""
@@ -76,12 +88,8 @@ class TurningContact(RigidContact):
     rotation_point: Optional[vector(COORDINATES)] = None
 
     def pivot(self):
-        """(axis, point) the phases rotate the obstacle about; None where the obstacle has no default."""
-        axis = self.rotation_axis if any(self.rotation_axis) else getattr(self, "axis", None)
-        point = self.rotation_point
-        if point is None:
-            point = next((getattr(self, k) for k in ("center", "point") if hasattr(self, k)), None)
-        return axis, point
+        """(axis, point) the phases rotate the obstacle about (:func:`rotation_pivot`)."""
+        return rotation_pivot(self.dict())
 
 
 class PlaneContact(TurningContact):
