@@ -11,7 +11,8 @@
 
 namespace hypercontact::python {
 
-/// RigidContactInput: x (n, 3), area (n,), dofs (n, 3) int32, multipliers (n,) or (0,).
+/// RigidContactInput: x (n, 3), area (n,), dofs (n, 3k) int32, multipliers (n,) or (0,),
+/// point_weights (n, k) or (0, 0) (nodal: k = 1).
 struct OwnedRigidContactInput {
   Obstacle obstacle;
   RealArray x, area;
@@ -19,14 +20,22 @@ struct OwnedRigidContactInput {
   double eps_n;
   RealArray multipliers;
   double smoothing;
+  RealArray point_weights;
 
   RigidContactInput view() const {
     check_shape(x, "x", {any, 3});
     check_shape(area, "area", {x.shape(0)});
-    check_shape(dofs, "dofs", {x.shape(0), 3});
     check_shape(multipliers, "multipliers", {any});
-    return {obstacle, as_span(x),           as_span(area), as_span(dofs),
-            eps_n,    as_span(multipliers), smoothing};
+    py::ssize_t k = 1;  // (0, 0) or (0,): nodes; (n, k): points of k nodes (n may be 0)
+    if (point_weights.ndim() == 2 && point_weights.shape(1) > 0) {
+      check_shape(point_weights, "point_weights", {x.shape(0), any});
+      k = point_weights.shape(1);
+    } else if (point_weights.size() > 0) {
+      check_shape(point_weights, "point_weights", {x.shape(0), any});
+    }
+    check_shape(dofs, "dofs", {x.shape(0), 3 * k});
+    return {obstacle,  as_span(x),           as_span(area), as_span(dofs),
+            eps_n,     as_span(multipliers), smoothing,     as_span(point_weights)};
   }
 };
 

@@ -15,20 +15,26 @@ void declare_rigid_contact(py::module_& m) {
                  "Slave nodes against one rigid obstacle: obstacle; x (n, 3) current coordinates;\n"
                  "area (n,); dofs (n, 3) int32 process-local, -1 = constrained; eps_n;\n"
                  "multipliers (n,) augmented-Lagrangian pressures >= 0, or empty (penalty);\n"
-                 "smoothing: the band delta >= 0 of the smoothed law (0: the Macaulay bracket).")
+                 "smoothing: the band delta >= 0 of the smoothed law (0: the Macaulay bracket);\n"
+                 "point_weights (n, k): slave points x_p = sum_a M_a x_a of k nodes each (Gauss\n"
+                 "points; then dofs is (n, 3k), the nodes' dofs in order), or empty: nodes.")
       .def(py::init([](Obstacle obstacle, RealArray x, RealArray area, IndexArray dofs,
-                       double eps_n, RealArray multipliers, double smoothing) {
-             return In{std::move(obstacle), x, area, dofs, eps_n, multipliers, smoothing};
+                       double eps_n, RealArray multipliers, double smoothing,
+                       RealArray point_weights) {
+             return In{std::move(obstacle), x, area, dofs, eps_n, multipliers, smoothing,
+                       point_weights};
            }),
            py::kw_only(), py::arg("obstacle"), py::arg("x"), py::arg("area"), py::arg("dofs"),
-           py::arg("eps_n"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0)
+           py::arg("eps_n"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
+           py::arg("point_weights") = RealArray(0))
       .def_readwrite("obstacle", &In::obstacle)
       .def_readwrite("x", &In::x)
       .def_readwrite("area", &In::area)
       .def_readwrite("dofs", &In::dofs)
       .def_readwrite("eps_n", &In::eps_n)
       .def_readwrite("multipliers", &In::multipliers)
-      .def_readwrite("smoothing", &In::smoothing);
+      .def_readwrite("smoothing", &In::smoothing)
+      .def_readwrite("point_weights", &In::point_weights);
 
   py::class_<RigidContactState>(m, "RigidContactState", "Per-node gap and pressure, total force")
       .def_property_readonly("gap", [](const RigidContactState& s) { return to_numpy(s.gap); })

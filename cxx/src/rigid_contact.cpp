@@ -19,12 +19,40 @@ void check_rigid_sizes(std::span<const double> x, std::span<const double> area,
                                 std::to_string(n) + " (one per slave node) or none");
 }
 
-void check_rigid_input(const RigidContactInput& in, const char* who) {
+int check_rigid_input(const RigidContactInput& in, const char* who) {
   check_rigid_sizes(in.x, in.area, in.multipliers, who);
-  if (in.dofs.size() != in.x.size())
+  const std::size_t n = in.area.size();
+  std::size_t k = 1;
+  if (!in.point_weights.empty()) {
+    if (n == 0 || in.point_weights.size() % n != 0)
+      throw std::invalid_argument(std::string(who) + ": point_weights has " +
+                                  std::to_string(in.point_weights.size()) +
+                                  " entries, expected k × " + std::to_string(n) +
+                                  " (k nodes per slave point)");
+    k = in.point_weights.size() / n;
+  }
+  if (in.dofs.size() != 3 * k * n)
     throw std::invalid_argument(std::string(who) + ": dofs has " + std::to_string(in.dofs.size()) +
-                                " entries, expected " + std::to_string(in.x.size()) +
-                                " (3 per slave node, like x)");
+                                " entries, expected " + std::to_string(3 * k * n) + " (3 per node of " +
+                                (k == 1 ? std::string("each slave node") :
+                                          std::to_string(k) + " per slave point") + ")");
+  return static_cast<int>(k);
+}
+
+void append_point_element(ContactElements& elements, const RigidContactInput& in, int k,
+                          std::size_t i, const Eigen::Vector3d& r, const Eigen::Matrix3d& K) {
+  ContactElements::Slot e = elements.append(static_cast<std::int32_t>(i), 3 * k, 3 * k);
+  for (int j = 0; j < 3 * k; ++j) e.rows[j] = e.columns[j] = in.dofs[3 * k * i + j];
+  if (in.point_weights.empty()) {
+    e.residual = r;
+    e.tangent = K;
+    return;
+  }
+  const double* M = &in.point_weights[k * i];
+  for (int a = 0; a < k; ++a) {
+    e.residual.segment<3>(3 * a) = M[a] * r;
+    for (int b = 0; b < k; ++b) e.tangent.block<3, 3>(3 * a, 3 * b) = (M[a] * M[b]) * K;
+  }
 }
 
 Eigen::Vector3d slave_node(std::span<const double> x, std::size_t i, const char* who) {
@@ -71,7 +99,7 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
 
 RigidContactEvaluation evaluate_rigid_contact(const RigidContactInput& in) {
   constexpr const char* who = "evaluate_rigid_contact";
-  detail::check_rigid_input(in, who);
+  const int k = detail::check_rigid_input(in, who);
   const std::size_t n = in.area.size();
   RigidContactEvaluation out{{{}, {}, Eigen::Vector3d::Zero(), 0}, {}};
   out.gap.reserve(n);
@@ -88,10 +116,7 @@ RigidContactEvaluation evaluate_rigid_contact(const RigidContactInput& in) {
     if (!c.closed) continue;
     ++out.num_closed;
     out.force -= c.residual;
-    ContactElements::Slot e = out.elements.append(static_cast<std::int32_t>(i), 3, 3);
-    for (int k = 0; k < 3; ++k) e.rows[k] = e.columns[k] = in.dofs[3 * i + k];
-    e.residual = c.residual;
-    e.tangent = c.tangent;
+    detail::append_point_element(out.elements, in, k, i, c.residual, c.tangent);
   }
   return out;
 }

@@ -35,7 +35,7 @@ RigidFrictionEvaluation empty_evaluation(std::size_t n) {
 RigidFrictionEvaluation evaluate_rigid_friction(const RigidFrictionInput& in) {
   constexpr const char* who = "evaluate_rigid_friction";
   const RigidContactInput& c = in.contact;
-  detail::check_rigid_input(c, who);
+  const int k = detail::check_rigid_input(c, who);
   check_history(in, who);
   const std::size_t n = c.area.size();
   RigidFrictionEvaluation out = empty_evaluation(n);
@@ -61,15 +61,11 @@ RigidFrictionEvaluation evaluate_rigid_friction(const RigidFrictionInput& in) {
     ++out.num_closed;
     out.force -= normal.residual;
     out.friction_force -= f.residual;
-    ContactElements::Slot e = out.elements.append(static_cast<std::int32_t>(i), 3, 3);
-    for (int k = 0; k < 3; ++k) e.rows[k] = e.columns[k] = c.dofs[3 * i + k];
-    if (in.with_normal) {
-      e.residual = normal.residual + f.residual;
-      e.tangent = normal.tangent + f.tangent;
-    } else {
-      e.residual = f.residual;
-      e.tangent = f.tangent;
-    }
+    if (in.with_normal)
+      detail::append_point_element(out.elements, c, k, i, normal.residual + f.residual,
+                                   normal.tangent + f.tangent);
+    else
+      detail::append_point_element(out.elements, c, k, i, f.residual, f.tangent);
   }
   out.total_force = out.force + out.friction_force;
   return out;

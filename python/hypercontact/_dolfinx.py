@@ -117,20 +117,24 @@ def facets_with_tag(facet_tags, tag):
 
 
 def vertex_to_node(V):
-    """Process-local mesh vertex → process-local node of the degree-1 space V."""
+    """Process-local mesh vertex → process-local node of the Lagrange space V (any degree)."""
     mesh = V.mesh
     tdim = mesh.topology.dim
     mesh.topology.create_connectivity(tdim, 0)
     c2v = mesh.topology.connectivity(tdim, 0)
     num_cells = mesh.topology.index_map(tdim).size_local + mesh.topology.index_map(tdim).num_ghosts
+    layout = V.dofmap.dof_layout
+    per_cell = c2v.array.reshape(num_cells, -1).shape[1]
+    vertex_dofs = [layout.entity_dofs(0, i)[0] for i in range(per_cell)]
     out = np.full(mesh.topology.index_map(0).size_local + mesh.topology.index_map(0).num_ghosts, -1, np.int32)
-    out[c2v.array.reshape(num_cells, -1).ravel()] = V.dofmap.list.array.reshape(num_cells, -1).ravel()
+    cell_nodes = V.dofmap.list.array.reshape(num_cells, -1)[:, vertex_dofs]
+    out[c2v.array.reshape(num_cells, -1).ravel()] = cell_nodes.ravel()
     return out
 
 
 def facet_vertex_nodes(V, facets):
     """(nodes of each facet's vertices in dolfinx order (f, k), the first cell of each facet (f,))
-    for process-local facets of the degree-1 space V."""
+    for process-local facets of the Lagrange space V."""
     mesh = V.mesh
     tdim = mesh.topology.dim
     mesh.topology.create_connectivity(tdim - 1, 0)
@@ -140,6 +144,58 @@ def facet_vertex_nodes(V, facets):
     per_facet = len(f2v.links(0)) if f2v.num_nodes > 0 else 0
     nodes = np.array([v2n[f2v.links(f)] for f in facets], dtype=np.int32).reshape(len(facets), per_facet)
     return nodes, facet_cells(mesh, facets)
+
+
+def facet_higher_nodes(V, facets, corners):
+    """The nodes of a degree-2 space V on process-local facets beyond their
+    vertices: (edge nodes (f, k), edge j the one between corners[:, j] and
+    corners[:, (j + 1) % k] (vertex nodes, in a cyclic order), face nodes (f,),
+    −1 where the facet has none: a triangle)."""
+    mesh = V.mesh
+    tdim = mesh.topology.dim
+    for a, b in ((tdim, 1), (tdim, tdim - 1), (tdim - 1, 1), (1, 0), (tdim - 1, tdim)):
+        mesh.topology.create_connectivity(a, b)
+    c2e, c2f = mesh.topology.connectivity(tdim, 1), mesh.topology.connectivity(tdim, tdim - 1)
+    f2e, e2v = mesh.topology.connectivity(tdim - 1, 1), mesh.topology.connectivity(1, 0)
+    layout, v2n = V.dofmap.dof_layout, vertex_to_node(V)
+    cells = facet_cells(mesh, facets)
+    f, k = corners.shape
+    edges, faces = np.full((f, k), -1, np.int32), np.full(f, -1, np.int32)
+    for i, (facet, cell) in enumerate(zip(facets, cells)):
+        dofs = V.dofmap.cell_dofs(cell)
+        cell_edges = list(c2e.links(cell))
+        by_vertices = {frozenset(v2n[e2v.links(e)]): e for e in f2e.links(facet)}
+        for j in range(k):
+            e = by_vertices[frozenset((corners[i, j], corners[i, (j + 1) % k]))]
+            edges[i, j] = dofs[layout.entity_dofs(1, cell_edges.index(e))[0]]
+        face_dofs = layout.entity_dofs(tdim - 1, list(c2f.links(cell)).index(facet))
+        if len(face_dofs):
+            faces[i] = dofs[face_dofs[0]]
+    return edges, faces
+
+
+def owned_node_sums(V, values):
+    """Per process-local node of the vector space V: each node's owner gets
+    the sum of every rank's values at it (ghosts' values moved to their owner),
+    ghosts get 0."""
+    f = fem.Function(V)
+    with f.vector.localForm() as local:
+        local.set(0.0)
+        local.array[0::3] = values
+    f.vector.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    with f.vector.localForm() as local:
+        out = local.array_r[0::3].copy()
+    out[num_owned_nodes(V):] = 0.0
+    return out
+
+
+def facet_type(mesh):
+    """"triangle" or "quadrilateral": the boundary facets of a tetrahedral or hexahedral mesh."""
+    return {"tetrahedron": "triangle", "hexahedron": "quadrilateral"}[mesh.topology.cell_type.name]
+
+
+def degree_of(V):
+    return V.ufl_element().degree()
 
 
 def facet_cells(mesh, facets):

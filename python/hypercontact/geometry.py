@@ -46,8 +46,10 @@ def _reset_gmsh():
     _gmsh_ready = False
 
 
-def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0)):
-    """Structured hexahedral box [origin, origin+size], n × n × m elements.
+def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0), cells="hexahedra"):
+    """Structured box [origin, origin+size], n × n × m hexahedra, or (cells =
+    "tetrahedra") the same grid with each hexahedron split into six
+    tetrahedra (gmsh's transfinite volume without recombination).
 
     Physical surfaces xmin, xmax, ymin, ymax, zmin, zmax; volume "body".
     n elements along x and y, m along z (through the thickness).
@@ -64,7 +66,8 @@ def box_model(gmsh, size, n, m, origin=(0.0, 0.0, 0.0)):
         gmsh.model.mesh.setTransfiniteCurve(tag, counts[axis] + 1)
     for _, tag in gmsh.model.getEntities(2):
         gmsh.model.mesh.setTransfiniteSurface(tag)
-        gmsh.model.mesh.setRecombine(2, tag)
+        if cells == "hexahedra":
+            gmsh.model.mesh.setRecombine(2, tag)
     for _, tag in gmsh.model.getEntities(3):
         gmsh.model.mesh.setTransfiniteVolume(tag)
     lo = np.array(origin, dtype=float)
@@ -88,9 +91,9 @@ def _physical_surface_names(gmsh):
     return {gmsh.model.getPhysicalName(2, tag): tag for _, tag in gmsh.model.getPhysicalGroups(2)}
 
 
-def build_box(comm, size, n, m, origin=(0.0, 0.0, 0.0)):
-    """A structured hexahedral box body (see :func:`box_model`)."""
-    return _from_gmsh(comm, lambda g: box_model(g, size, n, m, origin))
+def build_box(comm, size, n, m, origin=(0.0, 0.0, 0.0), cells="hexahedra"):
+    """A structured box body of hexahedra or tetrahedra (see :func:`box_model`)."""
+    return _from_gmsh(comm, lambda g: box_model(g, size, n, m, origin, cells))
 
 
 def read_msh(comm, path):
@@ -312,4 +315,4 @@ def build_mesh(comm, mesh, bodies=()):
         from .shell import build_shell_octant
 
         return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
-    return build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"])
+    return build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"], mesh.get("cells", "hexahedra"))

@@ -7,7 +7,8 @@ from hypercontact.scene.contact import BoxContact, CylinderContact, PlaneContact
 
 #: Keys every kind has (the laws and their enforcement), with values that are not the defaults.
 COMMON = {"eps_n": 50.0, "mu": 0.2, "eps_t": 20.0, "penalty_factor": 10.0, "enforcement": "penalty",
-          "gap_tolerance": 0.0, "smoothing": 0.0, "max_augmentations": 5, "active": False}
+          "gap_tolerance": 0.0, "smoothing": 0.0, "max_augmentations": 5, "active": False,
+          "integration": "gauss"}  # a surface's is its own (friction against a surface needs "nodal")
 KINDS = {
     "plane": {"point": [0.0, 0.0, -0.5], "normal": [0.0, 0.0, 2.0], "motion": [0.0, 0.0, 0.1],
               "rotation_axis": [1.0, 0.0, 0.0], "rotation_point": [0.5, 0.5, 0.0]},

@@ -45,15 +45,19 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
                                                      std::span<const double> multipliers = {},
                                                      double smoothing = 0.0);
 
-/// Slave nodes against one rigid obstacle.
+/// Slave points against one rigid obstacle. A point is a slave node (nodal integration:
+/// point_weights empty) or a combination x_p = Σ_a M_a x_a of k nodes (a Gauss point of a slave
+/// facet: point_weights holds M_a, n × k), whose element spreads r and K over the k nodes:
+/// R_a = M_a r, K_ab = M_a M_b K.
 struct RigidContactInput {
   Obstacle obstacle;
-  std::span<const double> x;                 ///< n × 3 current coordinates, row-major
-  std::span<const double> area;              ///< n tributary areas A_i ≥ 0
-  std::span<const std::int32_t> dofs;        ///< n × 3 process-local dofs, −1: constrained
+  std::span<const double> x;                 ///< n × 3 current point coordinates, row-major
+  std::span<const double> area;              ///< n tributary areas (weights) A_i ≥ 0
+  std::span<const std::int32_t> dofs;        ///< n × k × 3 process-local dofs, −1: constrained
   double eps_n;                              ///< penalty ε_N > 0
   std::span<const double> multipliers = {};  ///< n augmented-Lagrangian λ_i ≥ 0, or empty
   double smoothing = 0.0;  ///< band δ ≥ 0 of the smoothed law (penetration.hpp)
+  std::span<const double> point_weights = {};  ///< n × k node weights M_a, or empty (k = 1)
 };
 
 /// Per-node and total output of an evaluation.
@@ -79,8 +83,13 @@ namespace detail {
 /// none per node of `area`.
 void check_rigid_sizes(std::span<const double> x, std::span<const double> area,
                        std::span<const double> multipliers, const char* who);
-/// As check_rigid_sizes, and dofs must hold 3 entries per node.
-void check_rigid_input(const RigidContactInput& in, const char* who);
+/// As check_rigid_sizes, and dofs must hold 3 entries per node of each point (k = 1, or
+/// point_weights' k = its size / n, with n > 0 when given). Returns k.
+int check_rigid_input(const RigidContactInput& in, const char* who);
+/// Appends the element of point i (k nodes): rows = columns = its k × 3 dofs, R_a = M_a r,
+/// K_ab = M_a M_b K (M = 1 for a node).
+void append_point_element(ContactElements& elements, const RigidContactInput& in, int k,
+                          std::size_t i, const Eigen::Vector3d& r, const Eigen::Matrix3d& K);
 /// x_i, or std::runtime_error naming the node if it is not finite.
 Eigen::Vector3d slave_node(std::span<const double> x, std::size_t i, const char* who);
 /// λ_i (0 without multipliers); std::invalid_argument unless it is finite and ≥ 0.

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _dolfinx as dfx
 from . import penalty
 from .kernels import evaluate
 from .enforcement import AugmentedLagrangian, Penalty
@@ -66,14 +67,15 @@ def _surface_law(entry, settings, geometry, comm, mu_max):
     return law
 
 
-def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path):
+def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path, u_dofs=None):
     """(contacts, settings) of the scene's [[contact]] entries, in order (a
     two-pass surface contact gives two, the second named <name>_pass2).
     ``tag_of(surface, key)``: the facet tag of a named surface (raising a
     SceneError naming ``key``); ``material_of(surface)``: the material entry
     of the body a slave surface belongs to (for the automatic ε_N); ``path``:
     the scene's :class:`~hypercontact.scene.path.LoadPath` (a contact whose μ
-    is > 0 anywhere on it gets the Coulomb law)."""
+    is > 0 anywhere on it gets the Coulomb law); ``u_dofs``: where V's dofs sit
+    in the unknown (mixed formulation), else None."""
     contacts, settings = [], []
     for i, entry in enumerate(scene["contact"]):
         slave = tag_of(entry["surface"], f"contact[{i}].surface")
@@ -89,20 +91,23 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path)
         for k, (name, slaves, masters) in enumerate(pairs):
             s = ContactSettings(name, eps_n, float(entry["eps_t"] or eps_n), gap_tolerance,
                                 penalty.smoothing_band(entry, V, facet_tags, slaves), note if k == 0 else None)
-            contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i))
+            contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i), u_dofs)
             contact.index = i
             contacts.append(contact)
             settings.append(s)
     return contacts, settings
 
 
-def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max):
+def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max, u_dofs):
     comm = V.mesh.comm
     if masters is None:
-        geometry = RigidObstacle(entry, V, facet_tags, slaves[0], constrained)
+        geometry = RigidObstacle(entry, V, facet_tags, slaves[0], constrained, u_dofs)
         law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if mu_max > 0
                else Frictionless())
     else:
+        if u_dofs is not None or dfx.degree_of(V) != 1:
+            raise ValueError(f"contact {s.name!r}: a deformable master needs linear elements (displacement or sri "
+                             f"formulation with degree 1)")
         geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
                                   entry["capture"], s.name)
         law = Frictionless() if second else _surface_law(entry, s, geometry, comm, mu_max)

@@ -54,8 +54,10 @@ class Evaluation:
 
 
 def _rigid(geometry, law, multipliers, eps_n, smoothing, x):
+    weights = geometry.point_weights
     contact = _cpp.RigidContactInput(obstacle=geometry.obstacle, x=x, area=geometry.area, dofs=geometry.dofs,
-                                     eps_n=eps_n, multipliers=multipliers, smoothing=smoothing)
+                                     eps_n=eps_n, multipliers=multipliers, smoothing=smoothing,
+                                     point_weights=weights if weights is not None else np.zeros((0, 0)))
     if not law.frictional:
         return Evaluation(_cpp.evaluate_rigid_contact(contact), ("gap", "pressure"), x)
     h = law.history

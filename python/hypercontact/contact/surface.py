@@ -40,7 +40,6 @@ class SurfacePairing:
 
     #: adds rows anywhere, by global index: the matrix pattern follows the pairing
     assembly = "global"
-    scratch_size = None
 
     def __init__(self, V, facet_tags, slave_tags, master_tags, constrained, integration, capture, name):
         self.comm = comm = V.mesh.comm

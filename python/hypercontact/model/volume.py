@@ -67,7 +67,8 @@ def _mixed(body, name, params, desc, qdeg):
         return P_iso + volume.mixed_pressure_stress(F, p, K, vol)
 
     return Volume(w, V, u, u_dofs, R, J, ufl.split(w)[0], ufl.split(ufl.TestFunction(w.function_space))[0],
-                  desc + ", mixed u–p (Taylor–Hood Q2–Q1)", stress)
+                  desc + f", mixed u–p (Taylor–Hood {'P2–P1' if dfx.facet_type(body.mesh) == 'triangle' else 'Q2–Q1'})",
+                  stress)
 
 
 def _several_bodies(scene, body, u, law, psi, params, desc):

@@ -66,7 +66,7 @@ class FieldWriter:
         V = u.function_space
         self.u_out = u if V.ufl_element().degree() == 1 else dfx.fem.Function(dfx.vector_space(V.mesh, 1),
                                                                              name="displacement")
-        if contacts:  # contact needs degree 1: V is the first-order vector space
+        if contacts:  # per node of V (any degree), written at the vertices
             self.Q, q_to_v = V.sub(0).collapse()
             self.q_nodes = np.asarray(q_to_v) // 3
             self.gap = dfx.fem.Function(self.Q, name="contact_gap")
@@ -78,6 +78,7 @@ class FieldWriter:
         self.xdmf = dfx.XDMFWriter(comm, path, V.mesh, append=append)
         # kernels compiled at the first step (FFCx JIT, timed as output)
         self._cell_kernels = None
+        self._first_order = {}  # name → vertex-valued copy of a degree-2 contact field
         S = dfx.fem.FunctionSpace(V.mesh, ("DG", 0))
         self.J = dfx.fem.Function(S, name="J")
         if stress is not None:
@@ -105,7 +106,7 @@ class FieldWriter:
         if self.u_out is not self.u:
             self.u_out.interpolate(self.u)
         self._check_finite([self.u_out], t, step)  # first: the other fields are computed from it
-        fields = self._contact_fields() if self.contacts else []
+        fields = [self._vertex_values(f) for f in self._contact_fields()] if self.contacts else []
         fields += self._cell_fields()
         self._check_finite(fields, t, step)
         return [self.u_out] + fields
@@ -118,6 +119,18 @@ class FieldWriter:
 
     def close(self):
         self.xdmf.close()
+
+    def _vertex_values(self, f):
+        """f itself on first-order nodes; else its interpolant at the vertices
+        (a Function of the same name, made once), as fields.xdmf holds them."""
+        if f.function_space.ufl_element().degree() == 1:
+            return f
+        if f.name not in self._first_order:
+            self._first_order[f.name] = dfx.first_order(f, f.function_space.mesh, f.name)
+            self._first_order[f.name].name = f.name
+        else:
+            self._first_order[f.name].interpolate(f)
+        return self._first_order[f.name]
 
     def _cell_kernels_compiled(self):
         """DG0 interpolation kernels of J and (with a stress law) σ = J⁻¹ P Fᵀ."""

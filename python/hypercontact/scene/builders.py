@@ -24,9 +24,11 @@ class Builder:
     graded: bool = False  #: takes grading
 
     def cells(self, spec):
-        """Number of hexahedra of the builder's keys ``spec``."""
+        """Number of cells of the builder's keys ``spec``."""
         n, m = spec["n"], spec["m"]
-        return 3 * (n // 2) ** 2 * m if self.name == "shell_octant" else n * n * m
+        if self.name == "shell_octant":
+            return 3 * (n // 2) ** 2 * m
+        return n * n * m * (6 if spec.get("cells") == "tetrahedra" else 1)
 
 
 BUILDERS = {
@@ -38,6 +40,8 @@ BUILDERS = {
                           graded=True),
     "file": Builder("file", main=True),
 }
+#: What the box builder's cells may be (mesh.cells).
+CELL_KINDS = ("hexahedra", "tetrahedra")
 MESH_BUILDERS = tuple(name for name, b in BUILDERS.items() if b.main)
 BODY_BUILDERS = tuple(name for name, b in BUILDERS.items() if b.body)
 #: The surfaces of each builder that names them.
@@ -59,10 +63,17 @@ def check_shape(spec):
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
         raise Invalid(f"grading applies to the {' and '.join(n for n, b in BUILDERS.items() if b.graded)} "
                       f"builders, not {builder.name!r}", "grading")
+    if spec.get("cells", "hexahedra") != "hexahedra":
+        if builder.name != "box":
+            raise Invalid(f"cells = {spec['cells']!r} applies to the box builder, not {builder.name!r}", "cells")
+        if spec["grading"] != [1.0, 1.0, 1.0]:
+            raise Invalid("a graded box is built of hexahedra only: cells = \"tetrahedra\" needs grading = "
+                          "[1, 1, 1]", "cells")
     {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere}[builder.name](spec)
     cells = builder.cells(spec)
     if cells > MAX_CELLS:
-        raise Invalid(f"n = {spec['n']}, m = {spec['m']} make {cells:.3g} hexahedra, more than "
+        kind = "tetrahedra" if spec.get("cells") == "tetrahedra" else "hexahedra"
+        raise Invalid(f"n = {spec['n']}, m = {spec['m']} make {cells:.3g} {kind}, more than "
                       f"{MAX_CELLS:.0e}", "n")
 
 

@@ -5,7 +5,7 @@ import re
 from pydantic import root_validator, validator
 
 from .base import SceneModel
-from .builders import BODY_BUILDERS, MESH_BUILDERS, check_shape, choices
+from .builders import BODY_BUILDERS, CELL_KINDS, MESH_BUILDERS, check_shape, choices
 from .errors import Invalid
 from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, integer,
                      number, one_of, string, vector)
@@ -27,6 +27,8 @@ class Mesh(SceneModel):
     n: integer(POSITIVE) = 4
     m: integer(POSITIVE) = 4
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    #: the box builder's cells: hexahedra, or each hexahedron split into six tetrahedra
+    cells: string(one_of(CELL_KINDS, choices(CELL_KINDS))) = "hexahedra"
     file: string(FILE_NAME) = ""
     #: random node displacements of this fraction of the smallest cell's size (fixed per node):
     #: a check that results move continuously with the data, not a modelling feature

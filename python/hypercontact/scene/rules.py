@@ -23,6 +23,9 @@ def several_bodies_need_one_built_mesh(s):
     mesh file, and a formulation without a pressure unknown."""
     if s.body and s.mesh.builder == "file":
         raise Invalid('several bodies need a built-in mesh.builder ("box" or "shell_octant"), found "file"', "body")
+    if s.body and s.mesh.cells != "hexahedra":
+        raise Invalid(f'several bodies are built of hexahedra: mesh.cells = "tetrahedra" needs a single body',
+                      ("mesh", "cells"))
     if s.body and s.discretisation.formulation == "mixed":
         raise Invalid('several bodies need the "displacement" or "sri" formulation, found "mixed"',
                       ("discretisation", "formulation"))
@@ -57,17 +60,19 @@ def incompressible_needs_mixed(s):
                           loc + ("parameters", "K"))
 
 
-def contact_needs_linear_displacements(s):
-    """The contact kernels take the nodes of trilinear hexahedra as the
-    displacement unknowns."""
-    if not s.contact:
+def deformable_masters_need_linear_displacements(s):
+    """A deformable master's facets are bilinear quadrilaterals or linear
+    triangles in the C++ kernels: its surface must be of degree-1 elements.
+    Rigid obstacles take slave nodes of any degree and formulation."""
+    disc = s.discretisation
+    if disc.formulation != "mixed" and disc.degree == 1:
         return
-    if s.discretisation.formulation == "mixed":
-        raise Invalid('contact needs the displacement or sri formulation with degree 1, found "mixed"',
-                      ("discretisation", "formulation"))
-    if s.discretisation.degree != 1:
-        raise Invalid(f"contact needs the displacement or sri formulation with degree 1, found "
-                      f"{s.discretisation.degree}", ("discretisation", "degree"))
+    found = f'"mixed"' if disc.formulation == "mixed" else f"degree {disc.degree}"
+    for i, entry in enumerate(s.contact):
+        if isinstance(entry, SurfaceContact):
+            raise Invalid(f"a deformable master (obstacle = \"surface\") needs the displacement or sri formulation "
+                          f"with degree 1, found {found}: quadratic master facets are not implemented; rigid "
+                          f"obstacles take quadratic and mixed elements", ("contact", i, "obstacle"))
 
 
 def surfaces(s):
@@ -361,7 +366,7 @@ def phase_curves_do_not_jump(s):
 
 
 RULES = (several_bodies_need_one_built_mesh, split_formulations_need_builtin_laws, incompressible_needs_mixed,
-         contact_needs_linear_displacements, surfaces_exist, pressures_do_work,
+         deformable_masters_need_linear_displacements, surfaces_exist, pressures_do_work,
          automatic_penalty_needs_builtin_law, probes_in_body, loads_have_values, phases_name_what_exists,
          phases_have_valid_settings, phase_curves_do_not_jump, continuation_needs_a_stop_probe_and_a_load,
          continuation_needs_fixed_contacts)
