@@ -194,6 +194,12 @@ def facet_type(mesh):
     return {"tetrahedron": "triangle", "hexahedron": "quadrilateral"}[mesh.topology.cell_type.name]
 
 
+def element_description(V):
+    """"27-node hexahedra", "4-node tetrahedra", …: the cells of the Lagrange space V."""
+    cell = V.mesh.topology.cell_type.name
+    return f"{V.dofmap.dof_layout.num_dofs}-node {'tetrahedra' if cell == 'tetrahedron' else 'hexahedra'}"
+
+
 def degree_of(V):
     return V.ufl_element().degree()
 

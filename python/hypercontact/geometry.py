@@ -109,8 +109,28 @@ def read_msh(comm, path):
             raise ValueError(f"mesh file {str(path)!r} cannot be read by gmsh: {err}") from None
         if not g.model.getEntities(3):
             raise ValueError(f"mesh file {str(path)!r} has no volume (3D) elements")
+        check_volume_elements(g, path)
 
     return _from_gmsh(comm, load)
+
+
+#: gmsh's volume element types a mesh may have: 4- and 10-node tetrahedra, 8- and 27-node hexahedra.
+VOLUME_ELEMENTS = {4: "4-node tetrahedra", 11: "10-node tetrahedra", 5: "8-node hexahedra", 12: "27-node hexahedra"}
+
+
+def check_volume_elements(gmsh, path):
+    """One kind and one order of volume element in the model (dolfinx builds one cell type):
+    ValueError naming what the file has otherwise."""
+    types = [int(t) for t in gmsh.model.mesh.getElementTypes(3)]
+    names = [VOLUME_ELEMENTS.get(t) or gmsh.model.mesh.getElementProperties(t)[0] for t in types]
+    unknown = [n for t, n in zip(types, names) if t not in VOLUME_ELEMENTS]
+    if unknown:
+        raise ValueError(f"mesh file {str(path)!r} has volume elements {', '.join(unknown)}: expected "
+                         f"{', '.join(VOLUME_ELEMENTS.values())} (second-order hexahedra with "
+                         f"Mesh.SecondOrderIncomplete = 0)")
+    if len(types) > 1:
+        raise ValueError(f"mesh file {str(path)!r} mixes volume elements ({' and '.join(names)}): one kind and "
+                         f"one order per mesh")
 
 
 def _raise_everywhere(comm, error):
@@ -127,6 +147,7 @@ def _from_gmsh(comm, make):
     error, names = None, None
     if comm.rank == 0:
         gmsh.clear()
+        gmsh.option.setNumber("Mesh.ElementOrder", 1)  # the builders mesh first order, whatever ran before
         try:
             make(gmsh)
             names = _physical_surface_names(gmsh)

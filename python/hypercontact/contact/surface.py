@@ -29,7 +29,7 @@ from mpi4py import MPI
 
 from .. import _cpp
 from .. import _dolfinx as dfx
-from .surface_mesh import edge_neighbours, gauss_points, nodal_areas, surface_facets
+from .surface_mesh import edge_neighbours, facet_gauss_points, gauss_points, nodal_areas, surface_facets
 
 #: C++ PairingStatus::Paired
 PAIRED = 2
@@ -51,7 +51,8 @@ class SurfacePairing:
         def to_contact(local_nodes):
             return np.searchsorted(self.global_ids, gidx[local_nodes]).astype(np.int32)
 
-        mq = to_contact(master_quads.ravel()).reshape(-1, 4)  # each boundary facet is on one rank
+        k = master_quads.shape[1]  # 4: quadrilaterals (hexahedra), 3: triangles (tetrahedra)
+        mq = to_contact(master_quads.ravel()).reshape(-1, k)  # each boundary facet is on one rank
         self.facets = np.ascontiguousarray(np.concatenate(comm.allgather(mq))) if comm.size > 1 else mq
         if len(self.facets) == 0:
             raise ValueError(f"contact {name!r}: the master surface has no facets")
@@ -66,8 +67,13 @@ class SurfacePairing:
             self.point_area = area[nodes].copy()
             self.nodes = nodes.astype(np.int32)
         else:
-            sq = to_contact(slave_quads.ravel()).reshape(-1, 4)
-            self.point_nodes, self.point_weights, self.point_area = gauss_points(sq, self.X)
+            sq = to_contact(slave_quads.ravel()).reshape(-1, slave_quads.shape[1])
+            if sq.shape[1] == 4:
+                self.point_nodes, self.point_weights, self.point_area = gauss_points(sq, self.X)
+            else:  # the 3 Gauss points of each triangle, padded to 4 nodes (the 4th: none, weight 0)
+                nodes, weights, self.point_area = facet_gauss_points(sq, self.X)
+                self.point_nodes = np.hstack([nodes, np.full((len(nodes), 1), -1, np.int32)])
+                self.point_weights = np.hstack([weights, np.zeros((len(nodes), 1))])
             self.nodes = None
         self.num_points = comm.allreduce(len(self.point_area), op=MPI.SUM)
         size = np.linalg.norm(self.X[self.facets[:, 2]] - self.X[self.facets[:, 0]], axis=1).max()
@@ -167,7 +173,8 @@ class SurfacePairing:
         offsets, cand = self.candidates
         n_points = len(self.point_area)
         per_candidate = np.repeat(np.arange(n_points), np.diff(offsets))
-        points = [np.repeat(np.arange(n_points), 4), np.repeat(per_candidate, 4)]
+        points = [np.repeat(np.arange(n_points), self.point_nodes.shape[1]),
+                  np.repeat(per_candidate, self.facets.shape[1])]
         nodes = [self.point_nodes.ravel(), self.facets[cand].ravel()]
         if extra is not None:
             points.append(extra[0])
@@ -240,7 +247,7 @@ class SurfaceFrictionHistory:
     def pattern_nodes(self):
         """(point, contact node) pairs of the old facets (the friction tangent has their columns)."""
         has = np.flatnonzero(self.facet >= 0)
-        return np.repeat(has, 4), self.geometry.facets[self.facet[has]].ravel()
+        return np.repeat(has, self.geometry.facets.shape[1]), self.geometry.facets[self.facet[has]].ravel()
 
     def state_dict(self):
         return {}, {"facet": self.facet, "xi": self.xi, "traction": self.traction}

@@ -18,7 +18,7 @@ def nodal_areas(V, facet_tags, tag):
     - 6-node triangles, whose corner integrals ∫ N_c dA vanish (a node-
       to-surface corner would carry no contact): the weights of the facet
       split into four 3-node triangles through its edge nodes, corner A/12,
-      edge A/4 (docs/contact.md, "Slave points of quadratic facets")."""
+      edge A/4 (docs/method.md §3.4)."""
     if dfx.degree_of(V) == 2 and dfx.facet_type(V.mesh) == "triangle":
         return _split_triangle_areas(V, facet_tags, tag)
     v = ufl.TestFunction(V)

@@ -48,7 +48,9 @@ class Model:
         self.inversion_check = InversionCheck(self.u, scene["discretisation"]["quadrature_degree"])
         self.effects = describe_effects(scene, vol.description, self.contact_settings, self.path.moving_bcs(),
                                         dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent,
-                                        self.path)
+                                        self.path, dfx.element_description(self.V),
+                                        sum(getattr(c.geometry, "integration", None) == "gauss"
+                                            for c in self.contacts))
 
     @property
     def symmetric_tangent(self):

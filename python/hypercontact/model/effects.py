@@ -17,17 +17,22 @@ def _mu(scene, path, j):
     return " → ".join(f"{m:g}" for m in mu)
 
 
-def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False, path=None):
-    """[material, contacts, automatic penalties, loads, control, linear
-    solver]; ``path``: the scene's LoadPath (with phases: μ along them, and
-    the phases in words)."""
+def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False, path=None,
+                     elements=None, gauss_rigid=0):
+    """[material, elements (unless trilinear hexahedra), contacts, automatic
+    penalties, loads, control, linear solver]; ``path``: the scene's LoadPath
+    (with phases: μ along them, and the phases in words); ``elements``: e.g.
+    "10-node tetrahedra"; ``gauss_rigid``: rigid contacts on Gauss points."""
     contacts = scene["contact"]
     n_rigid = sum(c["obstacle"] != "surface" for c in contacts)
     frictional = [j for j in range(len(contacts)) if (path.max_mu(j) if path is not None else contacts[j]["mu"]) > 0]
     mus = list(dict.fromkeys(_mu(scene, path, j) for j in frictional if contacts[j]["obstacle"] != "surface"))
     friction = f"Coulomb friction μ = {', '.join(mus)}" if mus else "frictionless"
-    effects = [material, (f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})" if n_rigid
-                          else "no rigid contact" if contacts else "no contact")]
+    if gauss_rigid:
+        friction += f", {'Gauss-point integration' if gauss_rigid == n_rigid else f'{gauss_rigid} on Gauss points'}"
+    effects = [material] + ([elements] if elements not in (None, "8-node hexahedra") else [])
+    effects.append(f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})" if n_rigid
+                   else "no rigid contact" if contacts else "no contact")
     for j, c in enumerate(contacts):
         if c["obstacle"] == "surface":
             effects.append(f"contact {c['surface']} → {c['master']} ("

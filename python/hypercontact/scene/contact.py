@@ -65,7 +65,7 @@ class RigidContact(Contact):
 
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]
     #: "auto": nodal, except on 6-node triangles (quadratic tetrahedra), whose nodal weights do not
-    #: pass the patch test (docs/contact.md): Gauss points there
+    #: pass the patch test (docs/method.md §3.4): Gauss points there
     integration: string(one_of(("auto", "nodal", "gauss"), '"auto", "nodal" (the paper: a point per slave '
                                                            'node) or "gauss" (the Gauss points of the slave '
                                                            'facets)')) = "auto"
