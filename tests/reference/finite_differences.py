@@ -22,3 +22,25 @@ def assembled_and_fd_jacobians(problem, x, free, h=1e-7):
         problem.residual(None, xm, bm)
         J_fd[:, j] = (bp.array - bm.array) / (2 * h)
     return J, J_fd
+
+
+def constrained_dofs(sim):
+    """Mask of the Dirichlet-constrained process-local dofs of a Simulation's unknown."""
+    from hypercontact import _dolfinx as dfx
+
+    constrained = np.zeros(sim.w.x.array.size, bool)
+    for bc in sim.bcs:
+        constrained[dfx.bc_dofs(bc)] = True
+    return constrained
+
+
+def simulation_jacobian_error(sim, constrained):
+    """max |J − J_fd| over the free dofs and max |J|, of the Simulation's
+    Problem at its current unknown (and the dense J, J_fd)."""
+    p = sim.problem
+    x = p.x
+    sim.w.vector.copy(x)
+    free = np.flatnonzero(~constrained)
+    J, J_fd = assembled_and_fd_jacobians(p, x, free)
+    err = np.abs(J - J_fd)[np.ix_(free, free)]
+    return err.max(), np.abs(J).max(), J, free
