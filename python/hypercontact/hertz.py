@@ -151,8 +151,8 @@ def measure(sim, geo):
     a_fit, p0_fit = fit_profile(r, p, closed)
     # approach: the sphere's top (centre of the flat face) against the bottom of everything on the axis
     uz_top, _ = _axis_extreme(sim, c, +1)
-    if geo["master"] is None and geo["obstacle"] != "surface":  # a rigid obstacle: its own motion
-        uz_bottom = float(np.asarray(contact.spec["motion"])[2]) * contact.load_factor
+    if geo["master"] is None and geo["obstacle"] != "surface":  # a rigid obstacle: where it has moved
+        uz_bottom = float(contact.geometry.pose.t[2])
     else:
         uz_bottom, _ = _axis_extreme(sim, c, -1)
     return dict(F=F, a_fit=a_fit, p0_fit=p0_fit, delta=uz_bottom - uz_top, r=r, p=p, closed=closed)

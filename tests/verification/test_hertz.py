@@ -75,3 +75,26 @@ def test_hertz_two_ranks_equal_serial(out_dir, tmp_path):
     probe_par = par.probes["top"].value(par.u)
     probe_ser = ser.probes["top"].value(ser.u)
     assert np.allclose(probe_par, probe_ser, rtol=1e-8, atol=1e-12)
+
+
+def test_approach_against_a_rigid_plane_is_the_plane_against_the_sphere_top(tmp_path):
+    """hertz.measure against a rigid obstacle: δ = the obstacle's displacement − the sphere
+    top's (here the plane moves up 0.1 and the flat top is held: δ = 0.1)."""
+    import tomllib
+
+    from hypercontact import hertz, scene
+    from hypercontact.simulation import Simulation
+
+    data = tomllib.loads((ROOT / "scenes" / "hertz.toml").read_text())
+    data["mesh"].update(n=2, m=2, grading=[1.0, 1.0, 1.0])
+    data["body"][0].update(n=4, m=4, grading=[1.0, 1.0, 1.0])
+    data["bc"][-1]["motion"] = [0.0, 0.0, 0.0]
+    data["contact"] = [{"name": "hertz", "surface": "ball.curved", "obstacle": "plane", "point": [0, 0, 0],
+                        "normal": [0, 0, 1], "motion": [0, 0, 0.1], "eps_n": 1000.0}]
+    data["output"] = {**data.get("output", {}), "dir": str(tmp_path), "xdmf": False}
+    sc = scene.load(data)
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    sim.run()
+    measured = hertz.measure(sim, hertz.geometry(sc))
+    assert measured["delta"] == pytest.approx(0.1, rel=1e-12)
+    assert measured["F"] > 0
