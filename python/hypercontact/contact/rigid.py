@@ -16,7 +16,8 @@ from .. import _cpp
 from .. import _dolfinx as dfx
 from ..scene.contact import rotation_pivot
 from ..scene.path import rotation_matrix
-from .surface_mesh import facet_gauss_points, facet_rule, nodal_areas, surface_facet_nodes, surface_facets
+from .surface_mesh import (facet_gauss_points, facet_rule, nodal_areas, six_node_triangles, surface_facet_nodes,
+                           surface_facets)
 
 
 def make_obstacle(kind, where, pose):
@@ -75,7 +76,7 @@ def rigid_integration(integration, V):
     1.7 % in force and 0.2–1.3 × in nodal pressure): Gauss points there."""
     if integration != "auto":
         return integration
-    return "gauss" if dfx.degree_of(V) == 2 and dfx.facet_type(V.mesh) == "triangle" else "nodal"
+    return "gauss" if six_node_triangles(V) else "nodal"
 
 
 class RigidObstacle:

@@ -7,6 +7,11 @@ import ufl
 from .. import _dolfinx as dfx
 
 
+def six_node_triangles(V):
+    """Whether the boundary facets of V are 6-node triangles (quadratic tetrahedra)."""
+    return dfx.degree_of(V) == 2 and dfx.facet_type(V.mesh) == "triangle"
+
+
 def nodal_areas(V, facet_tags, tag):
     """The slave nodes' areas A_i on the tagged surface, owned nodes
     (parallel-safe: summed over ranks; ghosts are 0). Positive weights that
@@ -19,7 +24,7 @@ def nodal_areas(V, facet_tags, tag):
       to-surface corner would carry no contact): the weights of the facet
       split into four 3-node triangles through its edge nodes, corner A/12,
       edge A/4 (docs/method.md §3.4)."""
-    if dfx.degree_of(V) == 2 and dfx.facet_type(V.mesh) == "triangle":
+    if six_node_triangles(V):
         return _split_triangle_areas(V, facet_tags, tag)
     v = ufl.TestFunction(V)
     ds = dfx.facet_integration_measure(V.mesh, facet_tags, quadrature_degree=2 * dfx.degree_of(V))
