@@ -26,8 +26,8 @@ std::pair<py::array_t<std::int32_t>, py::array_t<std::int32_t>> search_numpy(
   check_shape(master_x, "master_x", {any, 3});
   check_shape(facets, "facets", {any, any});
   const auto k = static_cast<int>(facets.shape(1));
-  if (k != 3 && k != 4)
-    throw py::value_error("facets: expected shape (*, 3) or (*, 4), got " +
+  if (k != 3 && k != 4 && k != 6 && k != 9)
+    throw py::value_error("facets: expected shape (*, 3), (*, 4), (*, 6) or (*, 9), got " +
                           shape_string({facets.shape(0), facets.shape(1)}));
   ContactCandidates found;
   {

@@ -6,6 +6,7 @@
 #include <hypercontact/rigid_contact.hpp>
 #include <hypercontact/surface_contact.hpp>
 #include <hypercontact/surface_contact_friction.hpp>
+#include <hypercontact/surface_element_types.hpp>
 
 #include "array.hpp"
 
@@ -39,8 +40,9 @@ struct OwnedRigidContactInput {
   }
 };
 
-/// SurfaceContactInput: x (nn, 3); point_nodes, point_weights (np, 4); point_area (np,);
-/// facets, edge_neighbour (nf, k), k = 3 (triangles) or 4 (quadrilaterals); offsets (np + 1,),
+/// SurfaceContactInput: x (nn, 3); point_nodes, point_weights (np, k ≤ 9); point_area (np,);
+/// facets (nf, k), k = 3, 6 (triangles) or 4, 9 (quadrilaterals); edge_neighbour (nf, corners);
+/// offsets (np + 1,),
 /// candidates; dofs (nn, 3) int32; multipliers (np,) or (0,).
 struct OwnedSurfaceContactInput {
   RealArray x;
@@ -55,14 +57,19 @@ struct OwnedSurfaceContactInput {
     check_shape(multipliers, "multipliers", {any});
     check_shape(x, "x", {any, 3});
     check_shape(point_area, "point_area", {any});
-    check_shape(point_nodes, "point_nodes", {point_area.shape(0), 4});
-    check_shape(point_weights, "point_weights", {point_area.shape(0), 4});
+    check_shape(point_nodes, "point_nodes", {point_area.shape(0), any});
+    if (point_nodes.shape(1) < 1 || point_nodes.shape(1) > max_slave_nodes)
+      throw py::value_error("point_nodes: expected 1 to " + std::to_string(max_slave_nodes) +
+                            " nodes per slave point, got shape " +
+                            shape_string({point_nodes.shape(0), point_nodes.shape(1)}));
+    check_shape(point_weights, "point_weights", {point_area.shape(0), point_nodes.shape(1)});
     check_shape(facets, "facets", {any, any});
     const auto k = static_cast<int>(facets.shape(1));
-    if (k != 3 && k != 4)
-      throw py::value_error("facets: expected shape (*, 3) or (*, 4), got " +
+    if (k != 3 && k != 4 && k != 6 && k != 9)
+      throw py::value_error("facets: expected shape (*, 3), (*, 4), (*, 6) or (*, 9), got " +
                             shape_string({facets.shape(0), facets.shape(1)}));
-    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), k});
+    const py::ssize_t corners = (k == 3 || k == 6) ? 3 : 4;
+    check_shape(edge_neighbour, "edge_neighbour", {facets.shape(0), corners});
     check_shape(offsets, "offsets", {point_area.shape(0) + 1});
     check_shape(candidates, "candidates", {any});
     check_shape(dofs, "dofs", {x.shape(0), 3});

@@ -49,9 +49,10 @@ Boxes inflated_boxes(std::span<const double> slave_x, std::span<const double> ma
   const std::string fn(function);
   check_coordinates(slave_x, function, "slave_x");
   check_coordinates(master_x, function, "master_x");
-  if (nodes_per_facet != 3 && nodes_per_facet != 4)
+  if (nodes_per_facet != 3 && nodes_per_facet != 4 && nodes_per_facet != 6 &&
+      nodes_per_facet != 9)
     throw std::invalid_argument(fn + ": nodes_per_facet = " + std::to_string(nodes_per_facet) +
-                                ", expected 3 (triangles) or 4 (quadrilaterals)");
+                                ", expected 3 or 6 (triangles), 4 or 9 (quadrilaterals)");
   const std::size_t k = static_cast<std::size_t>(nodes_per_facet);
   if (facets.size() % k != 0)
     throw std::invalid_argument(

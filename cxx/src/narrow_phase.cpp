@@ -13,8 +13,8 @@ namespace {
 int rank(Feature f) { return f == Feature::Face ? 0 : f == Feature::Edge ? 1 : 2; }
 
 void check_nodes_per_facet(int nodes_per_facet, const char* who) {
-  if (nodes_per_facet != 3 && nodes_per_facet != 4)
-    throw std::invalid_argument(std::string(who) + ": nodes_per_facet must be 3 or 4, got " +
+  if (nodes_per_facet != 3 && nodes_per_facet != 4 && nodes_per_facet != 6 && nodes_per_facet != 9)
+    throw std::invalid_argument(std::string(who) + ": nodes_per_facet must be 3, 4, 6 or 9, got " +
                                 std::to_string(nodes_per_facet));
 }
 
@@ -53,8 +53,9 @@ ClosestFacet closest_of(const Eigen::Vector3d& x_s, std::span<const std::int32_t
       throw std::invalid_argument("closest_facet: candidate facet " + std::to_string(facet) + ": " +
                                   e.what());
     }
+    constexpr int nc = facet_corners<NM>;
     double length = 0;
-    for (int a = 0; a < NM; ++a) length = std::max(length, (x.col((a + 1) % NM) - x.col(a)).norm());
+    for (int a = 0; a < nc; ++a) length = std::max(length, (x.col((a + 1) % nc) - x.col(a)).norm());
     bool better = !have;
     if (have) {
       const double tol =
@@ -80,7 +81,7 @@ ClosestFacet closest_of(const Eigen::Vector3d& x_s, std::span<const std::int32_t
 constexpr double max_overhang = 0.025;
 template <int NM>
 bool within_overhang(const Eigen::Vector2d& xi) {
-  if constexpr (NM == 4) return xi.cwiseAbs().maxCoeff() <= 1.0 + 2 * max_overhang;
+  if constexpr (facet_corners<NM> == 4) return xi.cwiseAbs().maxCoeff() <= 1.0 + 2 * max_overhang;
   return std::max({-xi[0], -xi[1], xi[0] + xi[1] - 1}) <= max_overhang;
 }
 
@@ -90,13 +91,11 @@ bool within_overhang(const Eigen::Vector2d& xi) {
 template <int NM>
 bool project_extended(const FacetNodes<NM>& master, const Eigen::Vector3d& x_s,
                       Eigen::Vector2d& xi) {
-  const Eigen::Vector3d x12 = master * facet_shape_mixed_derivatives<NM>();
   for (int it = 0; it < 30; ++it) {
     const Eigen::Vector3d r = x_s - master * facet_shape_functions<NM>(xi);
     const Eigen::Matrix<double, 3, 2> a = master * facet_shape_derivatives<NM>(xi);
-    Eigen::Matrix2d H = a.transpose() * a;
-    H(0, 1) -= r.dot(x12);
-    H(1, 0) = H(0, 1);
+    const Eigen::Matrix2d H =
+        distance_hessian(a, r, master * facet_shape_second_derivatives<NM>(xi));
     const Eigen::Vector2d grad = -a.transpose() * r;
     if (!(H.determinant() > 1e-12 * H.trace() * H.trace()) || !(H.trace() > 0)) return false;
     const Eigen::Vector2d step = H.ldlt().solve(grad);
@@ -123,12 +122,20 @@ template FacetNodes<3> gather_facet<3>(std::int32_t, const FacetConnectivity&,
                                        std::span<const double>);
 template FacetNodes<4> gather_facet<4>(std::int32_t, const FacetConnectivity&,
                                        std::span<const double>);
+template FacetNodes<6> gather_facet<6>(std::int32_t, const FacetConnectivity&,
+                                       std::span<const double>);
+template FacetNodes<9> gather_facet<9>(std::int32_t, const FacetConnectivity&,
+                                       std::span<const double>);
 
 NodeCoordinates gather_facet(std::int32_t facet, const FacetConnectivity& facets,
                              std::span<const double> coords) {
   check_nodes_per_facet(facets.nodes_per_facet, "gather_facet");
-  if (facets.nodes_per_facet == 3) return gather<3>(facet, facets, coords);
-  return gather<4>(facet, facets, coords);
+  switch (facets.nodes_per_facet) {
+    case 3: return gather<3>(facet, facets, coords);
+    case 4: return gather<4>(facet, facets, coords);
+    case 6: return gather<6>(facet, facets, coords);
+    default: return gather<9>(facet, facets, coords);
+  }
 }
 
 ClosestFacet closest_facet(const Eigen::Vector3d& x_s, std::span<const std::int32_t> candidates,
@@ -141,8 +148,12 @@ ClosestFacet closest_facet(const Eigen::Vector3d& x_s, std::span<const std::int3
                                 std::to_string(facets.nodes_per_facet) +
                                 " and coords num_nodes x 3 (row-major)");
   if (!x_s.allFinite()) throw std::invalid_argument("closest_facet: x_s must be finite");
-  if (facets.nodes_per_facet == 3) return closest_of<3>(x_s, candidates, facets, coords);
-  return closest_of<4>(x_s, candidates, facets, coords);
+  switch (facets.nodes_per_facet) {
+    case 3: return closest_of<3>(x_s, candidates, facets, coords);
+    case 4: return closest_of<4>(x_s, candidates, facets, coords);
+    case 6: return closest_of<6>(x_s, candidates, facets, coords);
+    default: return closest_of<9>(x_s, candidates, facets, coords);
+  }
 }
 
 NarrowPhase::NarrowPhase(const MasterSurface& master) : master_(master) {
@@ -152,26 +163,28 @@ NarrowPhase::NarrowPhase(const MasterSurface& master) : master_(master) {
   };
   const FacetConnectivity& f = master.facets;
   check_nodes_per_facet(f.nodes_per_facet, who);
-  const int k = f.nodes_per_facet;
+  const int k = f.nodes_per_facet, nc = f.corners();
   if (master.x.size() % 3) fail("x must hold 3 coordinates per node");
   if (f.nodes.size() % static_cast<std::size_t>(k))
     fail("facets must hold " + std::to_string(k) + " nodes per master facet");
-  if (master.edge_neighbour.size() != f.nodes.size())
-    fail("edge_neighbour must hold " + std::to_string(k) +
-         " entries per master facet (like facets)");
+  if (master.edge_neighbour.size() != f.size() * static_cast<std::size_t>(nc))
+    fail("edge_neighbour must hold " + std::to_string(nc) +
+         " entries per master facet (one per edge)");
   const auto nn = static_cast<std::int32_t>(master.x.size() / 3);
   const auto nf = static_cast<std::int32_t>(f.size());
   for (std::int32_t n : f.nodes)
     if (n < 0 || n >= nn) fail("a master facet node index is out of range");
   for (std::int32_t g : master.edge_neighbour)
     if (g >= nf) fail("an edge neighbour index is out of range");
-  // The rim: the ends of edges without a neighbour.
+  // The rim: the nodes of edges without a neighbour (their ends, and the edge node of a curved
+  // facet).
   rim_.assign(static_cast<std::size_t>(nn), 0);
   for (std::size_t facet = 0; facet < f.size(); ++facet)
-    for (int e = 0; e < k; ++e)
-      if (master.edge_neighbour[static_cast<std::size_t>(k) * facet + e] < 0) {
+    for (int e = 0; e < nc; ++e)
+      if (master.edge_neighbour[static_cast<std::size_t>(nc) * facet + e] < 0) {
         rim_[f.node(facet, e)] = 1;
-        rim_[f.node(facet, (e + 1) % k)] = 1;
+        rim_[f.node(facet, (e + 1) % nc)] = 1;
+        if (k > nc) rim_[f.node(facet, nc + e)] = 1;
       }
 }
 
@@ -179,8 +192,12 @@ PointPairing NarrowPhase::pair(const Eigen::Vector3d& x_s,
                                std::span<const std::int32_t> candidates) const {
   if (candidates.empty()) return {};
   if (!x_s.allFinite()) throw std::invalid_argument("NarrowPhase: the slave point is not finite");
-  if (master_.facets.nodes_per_facet == 3) return pair_on<3>(x_s, candidates);
-  return pair_on<4>(x_s, candidates);
+  switch (master_.facets.nodes_per_facet) {
+    case 3: return pair_on<3>(x_s, candidates);
+    case 4: return pair_on<4>(x_s, candidates);
+    case 6: return pair_on<6>(x_s, candidates);
+    default: return pair_on<9>(x_s, candidates);
+  }
 }
 
 template <int NM>
@@ -194,7 +211,8 @@ PointPairing NarrowPhase::pair_on(const Eigen::Vector3d& x_s,
   const auto f = static_cast<std::size_t>(closest.facet);
   bool on_boundary = false;
   if (proj.feature == Feature::Edge)
-    on_boundary = master_.edge_neighbour[NM * f + static_cast<std::size_t>(proj.local_index)] < 0;
+    on_boundary = master_.edge_neighbour[facet_corners<NM> * f +
+                                         static_cast<std::size_t>(proj.local_index)] < 0;
   else if (proj.feature == Feature::Vertex)
     on_boundary = on_rim(master_.facets.node(f, proj.local_index));
   const FacetNodes<NM> master = gather<NM>(closest.facet, master_.facets, master_.x);

@@ -59,9 +59,9 @@ struct SignedDistanceDerivatives {
 
 /// ∇ĝ and ∇²ĝ at x (derivatives over all 3 (ns + nm) coordinates).
 /// Face (ĝ = g, r = g n, φ* = ½ g², so g ∇²g = ∇²φ* − ∇g ∇gᵀ): with A = Pᵀ a (dofs × 2),
-/// C_α = P_,αᵀ n, M = aᵀa, κ = [0 n·x_,12; n·x_,12 0], H = M − g κ, B = g C − A and
+/// C_α = P_,αᵀ n, M = aᵀa, κ_αβ = n·x_,αβ, H = M − g κ, B = g C − A and
 /// ∇²φ* = PᵀP − B H⁻¹ Bᵀ, PᵀP − Pᵀ n nᵀ P = A M⁻¹ Aᵀ and M⁻¹ − H⁻¹ = −g M⁻¹ κ H⁻¹ give, with no
-/// division by g,  ∇²g = −A M⁻¹ κ H⁻¹ Aᵀ + C H⁻¹ Aᵀ + A H⁻¹ Cᵀ − g C H⁻¹ Cᵀ.
+/// division by g (κ_αβ = n·x_,αβ),  ∇²g = −A M⁻¹ κ H⁻¹ Aᵀ + C H⁻¹ Aᵀ + A H⁻¹ Cᵀ − g C H⁻¹ Cᵀ.
 /// Edge, vertex (ĝ = s |r| = s √(2 φ*)): ∇²ĝ = s (∇²φ* − Pᵀ r̂ r̂ᵀ P)/|r|, r̂ = r/|r|, with
 /// ∇²φ* = PᵀP + B dξ*/dx (node_to_surface's penalty tangent over w ε_N); 0 if r = 0.
 template <int NM>
@@ -79,8 +79,8 @@ SignedDistanceDerivatives<NM> signed_distance_derivatives(
     DofsBy2 C(k.dofs, 2);
     for (int alpha = 0; alpha < 2; ++alpha) C.col(alpha) = k.P_xi[alpha].transpose() * n;
     const Eigen::Matrix2d M = k.a.transpose() * k.a;
-    Eigen::Matrix2d kappa = Eigen::Matrix2d::Zero();
-    kappa(0, 1) = kappa(1, 0) = n.dot(k.x12);
+    Eigen::Matrix2d kappa;  // n·x_,αβ (bilinear: only the mixed term)
+    kappa << n.dot(k.xdd.col(0)), n.dot(k.xdd.col(2)), n.dot(k.xdd.col(2)), n.dot(k.xdd.col(1));
     const Eigen::Matrix2d H = M - k.gap * kappa;
     const Eigen::Matrix2d Hinv = H.inverse(), Minv = M.inverse();
     const DofMatrix hess = -A * (Minv * kappa * Hinv) * A.transpose() + C * Hinv * A.transpose() +
@@ -175,6 +175,12 @@ template SurfaceContact node_to_surface<3>(const SlaveNodes&, const SlaveWeights
 template SurfaceContact node_to_surface<4>(const SlaveNodes&, const SlaveWeights&,
                                            const FacetNodes<4>&, const FacetProjection&, double,
                                            double, double, double, double);
+template SurfaceContact node_to_surface<6>(const SlaveNodes&, const SlaveWeights&,
+                                           const FacetNodes<6>&, const FacetProjection&, double,
+                                           double, double, double, double);
+template SurfaceContact node_to_surface<9>(const SlaveNodes&, const SlaveWeights&,
+                                           const FacetNodes<9>&, const FacetProjection&, double,
+                                           double, double, double, double);
 
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
@@ -187,8 +193,14 @@ SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::Vector
     case 3:
       return node_to_surface<3>(s, M, FacetNodes<3>(master), projection, w, eps_n, touch, lambda,
                                 smoothing);
-    default:
+    case 4:
       return node_to_surface<4>(s, M, FacetNodes<4>(master), projection, w, eps_n, touch, lambda,
+                                smoothing);
+    case 6:
+      return node_to_surface<6>(s, M, FacetNodes<6>(master), projection, w, eps_n, touch, lambda,
+                                smoothing);
+    default:
+      return node_to_surface<9>(s, M, FacetNodes<9>(master), projection, w, eps_n, touch, lambda,
                                 smoothing);
   }
 }
@@ -211,11 +223,20 @@ double node_to_surface_energy(const NodeCoordinates& slave, const Eigen::VectorX
   check_multiplier(lambda, who);
   const SlaveNodes s = detail::bounded_slave(slave, weights, who);
   const FacetProjection p = project_to_facet(master, slave * weights);
-  if (detail::facet_node_count(master, who) == 3)
-    return energy<3>(detail::surface_kinematics<3>(s, weights, master, p, who), w, eps_n, touch,
-                     lambda, smoothing, who);
-  return energy<4>(detail::surface_kinematics<4>(s, weights, master, p, who), w, eps_n, touch,
-                   lambda, smoothing, who);
+  switch (detail::facet_node_count(master, who)) {
+    case 3:
+      return energy<3>(detail::surface_kinematics<3>(s, weights, master, p, who), w, eps_n, touch,
+                       lambda, smoothing, who);
+    case 4:
+      return energy<4>(detail::surface_kinematics<4>(s, weights, master, p, who), w, eps_n, touch,
+                       lambda, smoothing, who);
+    case 6:
+      return energy<6>(detail::surface_kinematics<6>(s, weights, master, p, who), w, eps_n, touch,
+                       lambda, smoothing, who);
+    default:
+      return energy<9>(detail::surface_kinematics<9>(s, weights, master, p, who), w, eps_n, touch,
+                       lambda, smoothing, who);
+  }
 }
 
 }  // namespace hypercontact

@@ -34,10 +34,12 @@ SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in)
   SurfaceContactEvaluation out;
   detail::init_state(out, in.point_area.size());
   out.elements.numbering = DofNumbering::Global;
-  if (in.facets.nodes_per_facet == 3)
-    evaluate_points<3>(in, narrow, out);
-  else
-    evaluate_points<4>(in, narrow, out);
+  switch (in.facets.nodes_per_facet) {
+    case 3: evaluate_points<3>(in, narrow, out); break;
+    case 4: evaluate_points<4>(in, narrow, out); break;
+    case 6: evaluate_points<6>(in, narrow, out); break;
+    default: evaluate_points<9>(in, narrow, out); break;
+  }
   return out;
 }
 

@@ -104,10 +104,12 @@ SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& 
   check_history(fin);
   const NarrowPhase narrow({in.x, in.facets, in.edge_neighbour});
   SurfaceFrictionEvaluation s = empty_evaluation(in.point_area.size());
-  if (in.facets.nodes_per_facet == 3)
-    evaluate_points<3>(fin, narrow, s);
-  else
-    evaluate_points<4>(fin, narrow, s);
+  switch (in.facets.nodes_per_facet) {
+    case 3: evaluate_points<3>(fin, narrow, s); break;
+    case 4: evaluate_points<4>(fin, narrow, s); break;
+    case 6: evaluate_points<6>(fin, narrow, s); break;
+    default: evaluate_points<9>(fin, narrow, s); break;
+  }
   return s;
 }
 

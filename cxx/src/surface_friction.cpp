@@ -69,7 +69,11 @@ Rows3 traction_derivative(const detail::SurfaceKinematics<NM>& k, const Rows2& D
   const Rows3 dr = P_full - k.a * D;
   std::array<Rows3, 2> da;
   for (int alpha = 0; alpha < 2; ++alpha) {
-    da[alpha] = k.x12 * D.row(1 - alpha);  // x_,11 = x_,22 = 0
+    // da_α = x_,αβ dξ^β + Σ_a ∂N_a/∂ξ_α dx_a (bilinear and linear facets: x_,11 = x_,22 = 0)
+    if constexpr (facet_is_quadratic<NM>)
+      da[alpha] = k.xdd.col(alpha) * D.row(alpha) + k.xdd.col(2) * D.row(1 - alpha);
+    else
+      da[alpha] = k.xdd.col(2) * D.row(1 - alpha);
     for (int a = 0; a < NM; ++a)
       da[alpha].template middleCols<3>(3 * (k.ns + a)) += k.dN(a, alpha) * I;
   }
@@ -166,6 +170,8 @@ HYPERCONTACT_SURFACE_FRICTION(3, 3)
 HYPERCONTACT_SURFACE_FRICTION(3, 4)
 HYPERCONTACT_SURFACE_FRICTION(4, 3)
 HYPERCONTACT_SURFACE_FRICTION(4, 4)
+HYPERCONTACT_SURFACE_FRICTION(6, 6)
+HYPERCONTACT_SURFACE_FRICTION(9, 9)
 #undef HYPERCONTACT_SURFACE_FRICTION
 
 namespace {
@@ -175,11 +181,23 @@ SurfaceFriction with_old_facet(const SlaveNodes& s, const SlaveWeights& M,
                                const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
                                const Eigen::Vector3d& t_old, double w, double eps_n, double eps_t,
                                double mu, double lambda, double smoothing) {
-  if (detail::facet_node_count(old_master, "surface_friction (old facet)") == 3)
-    return surface_friction<NM, 3>(s, M, master, projection, FacetNodes<3>(old_master), xi_old,
-                                   t_old, w, eps_n, eps_t, mu, lambda, smoothing);
-  return surface_friction<NM, 4>(s, M, master, projection, FacetNodes<4>(old_master), xi_old, t_old,
-                                 w, eps_n, eps_t, mu, lambda, smoothing);
+  const int no = detail::facet_node_count(old_master, "surface_friction (old facet)");
+  if constexpr (facet_is_quadratic<NM>) {  // a surface of curved facets: the old facet is alike
+    if (no != NM)
+      invalid("the old facet has " + std::to_string(no) + " nodes and the current one " +
+              std::to_string(NM) + ": both must be facets of one surface");
+    return surface_friction<NM, NM>(s, M, master, projection, FacetNodes<NM>(old_master), xi_old,
+                                    t_old, w, eps_n, eps_t, mu, lambda, smoothing);
+  } else {
+    if (no == 3)
+      return surface_friction<NM, 3>(s, M, master, projection, FacetNodes<3>(old_master), xi_old,
+                                     t_old, w, eps_n, eps_t, mu, lambda, smoothing);
+    if (no == 4)
+      return surface_friction<NM, 4>(s, M, master, projection, FacetNodes<4>(old_master), xi_old,
+                                     t_old, w, eps_n, eps_t, mu, lambda, smoothing);
+    invalid("the old facet has " + std::to_string(no) + " nodes and the current one " +
+            std::to_string(NM) + ": both must be facets of one surface");
+  }
 }
 }  // namespace
 
@@ -191,11 +209,20 @@ SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::Vect
   check_parameters(w, eps_n, eps_t, mu);
   const SlaveNodes s = detail::bounded_slave(slave, weights, who);
   const SlaveWeights M = weights;
-  if (detail::facet_node_count(master, who) == 3)
-    return with_old_facet<3>(s, M, FacetNodes<3>(master), projection, old_master, xi_old, t_old, w,
-                             eps_n, eps_t, mu, lambda, smoothing);
-  return with_old_facet<4>(s, M, FacetNodes<4>(master), projection, old_master, xi_old, t_old, w,
-                           eps_n, eps_t, mu, lambda, smoothing);
+  switch (detail::facet_node_count(master, who)) {
+    case 3:
+      return with_old_facet<3>(s, M, FacetNodes<3>(master), projection, old_master, xi_old, t_old,
+                               w, eps_n, eps_t, mu, lambda, smoothing);
+    case 4:
+      return with_old_facet<4>(s, M, FacetNodes<4>(master), projection, old_master, xi_old, t_old,
+                               w, eps_n, eps_t, mu, lambda, smoothing);
+    case 6:
+      return with_old_facet<6>(s, M, FacetNodes<6>(master), projection, old_master, xi_old, t_old,
+                               w, eps_n, eps_t, mu, lambda, smoothing);
+    default:
+      return with_old_facet<9>(s, M, FacetNodes<9>(master), projection, old_master, xi_old, t_old,
+                               w, eps_n, eps_t, mu, lambda, smoothing);
+  }
 }
 
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,

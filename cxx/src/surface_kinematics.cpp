@@ -36,11 +36,11 @@ SurfaceKinematics<NM> surface_kinematics(const SlaveNodes& slave, const SlaveWei
   k.normal = facet_normal<NM>(master, xi);  // throws on a degenerate or folded facet
   k.N = facet_shape_functions<NM>(xi);
   k.dN = facet_shape_derivatives<NM>(xi);
-  k.d2N = facet_shape_mixed_derivatives<NM>();
+  k.d2N = facet_shape_second_derivatives<NM>(xi);
   k.x_s = slave * weights;
   k.r = k.x_s - master * k.N;
   k.a = master * k.dN;
-  k.x12 = master * k.d2N;
+  k.xdd = master * k.d2N;
   k.c = k.a.col(0).cross(k.a.col(1));
   k.gap = k.r.dot(k.normal);
 
@@ -79,9 +79,7 @@ ProjectionDerivatives<NM> projection_derivatives(const SurfaceKinematics<NM>& k,
 
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 2, 2>;
   const Eigen::Matrix2d metric = k.a.transpose() * k.a;
-  Eigen::Matrix2d H = metric;
-  H(0, 1) -= k.r.dot(k.x12);
-  H(1, 0) = H(0, 1);
+  const Eigen::Matrix2d H = distance_hessian(k.a, k.r, k.xdd);
   const Small Ht = k.T.transpose() * H * k.T;
   const Small Mt = k.T.transpose() * metric * k.T;
   const Eigen::SelfAdjointEigenSolver<Small> eig(Ht, Eigen::EigenvaluesOnly);
@@ -97,8 +95,9 @@ ProjectionDerivatives<NM> projection_derivatives(const SurfaceKinematics<NM>& k,
 }
 
 int facet_node_count(const NodeCoordinates& master, const char* who) {
-  if (master.cols() != 3 && master.cols() != 4)
-    invalid(who, "a master facet has 3 or 4 nodes, got " + std::to_string(master.cols()));
+  const auto n = master.cols();
+  if (n != 3 && n != 4 && n != 6 && n != 9)
+    invalid(who, "a master facet has 3, 4, 6 or 9 nodes, got " + std::to_string(n));
   return static_cast<int>(master.cols());
 }
 
@@ -118,9 +117,19 @@ template SurfaceKinematics<3> surface_kinematics<3>(const SlaveNodes&, const Sla
 template SurfaceKinematics<4> surface_kinematics<4>(const SlaveNodes&, const SlaveWeights&,
                                                     const FacetNodes<4>&, const FacetProjection&,
                                                     const char*);
+template SurfaceKinematics<6> surface_kinematics<6>(const SlaveNodes&, const SlaveWeights&,
+                                                    const FacetNodes<6>&, const FacetProjection&,
+                                                    const char*);
+template SurfaceKinematics<9> surface_kinematics<9>(const SlaveNodes&, const SlaveWeights&,
+                                                    const FacetNodes<9>&, const FacetProjection&,
+                                                    const char*);
 template ProjectionDerivatives<3> projection_derivatives<3>(const SurfaceKinematics<3>&,
                                                             const char*);
 template ProjectionDerivatives<4> projection_derivatives<4>(const SurfaceKinematics<4>&,
+                                                            const char*);
+template ProjectionDerivatives<6> projection_derivatives<6>(const SurfaceKinematics<6>&,
+                                                            const char*);
+template ProjectionDerivatives<9> projection_derivatives<9>(const SurfaceKinematics<9>&,
                                                             const char*);
 
 }  // namespace hypercontact::detail

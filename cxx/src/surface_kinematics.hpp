@@ -20,12 +20,12 @@ struct SurfaceKinematics {
   int ns = 0, dofs = 0;
   Eigen::Matrix<double, NM, 1> N;    ///< N_a(ξ*)
   Eigen::Matrix<double, NM, 2> dN;   ///< ∂N_a/∂ξ_α at ξ*
-  Eigen::Matrix<double, NM, 1> d2N;  ///< ∂²N_a/∂ξ1∂ξ2
+  Eigen::Matrix<double, NM, 3> d2N;  ///< ∂²N_a/∂ξ1², ∂²N_a/∂ξ2², ∂²N_a/∂ξ1∂ξ2
   Rows3 P;                           ///< 3 × dofs
   std::array<Rows3, 2> P_xi;         ///< ∂P/∂ξ_α = [0, −∂N_a/∂ξ_α I]
   Eigen::Vector3d x_s, r;
   Eigen::Matrix<double, 3, 2> a;  ///< a_α at ξ*
-  Eigen::Vector3d x12;            ///< x_,12 (x_,11 = x_,22 = 0)
+  Eigen::Matrix3d xdd;            ///< [x_,11 x_,22 x_,12] (bilinear: only x_,12 ≠ 0)
   Eigen::Vector3d c;              ///< a_1 × a_2
   Eigen::Vector3d normal;         ///< c / |c|
   double gap = 0;                 ///< r · n
@@ -53,7 +53,7 @@ struct ProjectionDerivatives {
 template <int NM>
 ProjectionDerivatives<NM> projection_derivatives(const SurfaceKinematics<NM>& k, const char* who);
 
-/// master.cols() if it is 3 or 4, else std::invalid_argument.
+/// master.cols() if it is 3, 4, 6 or 9, else std::invalid_argument.
 int facet_node_count(const NodeCoordinates& master, const char* who);
 
 /// The slave nodes and weights of a run-time caller (3 × ns, ns ≤ max_slave_nodes), checked.
@@ -66,9 +66,19 @@ extern template SurfaceKinematics<3> surface_kinematics<3>(const SlaveNodes&, co
 extern template SurfaceKinematics<4> surface_kinematics<4>(const SlaveNodes&, const SlaveWeights&,
                                                            const FacetNodes<4>&,
                                                            const FacetProjection&, const char*);
+extern template SurfaceKinematics<6> surface_kinematics<6>(const SlaveNodes&, const SlaveWeights&,
+                                                           const FacetNodes<6>&,
+                                                           const FacetProjection&, const char*);
+extern template SurfaceKinematics<9> surface_kinematics<9>(const SlaveNodes&, const SlaveWeights&,
+                                                           const FacetNodes<9>&,
+                                                           const FacetProjection&, const char*);
 extern template ProjectionDerivatives<3> projection_derivatives<3>(const SurfaceKinematics<3>&,
                                                                    const char*);
 extern template ProjectionDerivatives<4> projection_derivatives<4>(const SurfaceKinematics<4>&,
+                                                                   const char*);
+extern template ProjectionDerivatives<6> projection_derivatives<6>(const SurfaceKinematics<6>&,
+                                                                   const char*);
+extern template ProjectionDerivatives<9> projection_derivatives<9>(const SurfaceKinematics<9>&,
                                                                    const char*);
 
 }  // namespace hypercontact::detail

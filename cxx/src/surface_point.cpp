@@ -10,15 +10,18 @@ void check_surface_input(const SurfaceContactInput& in, const char* who) {
   auto fail = [who](const std::string& what) {
     throw std::invalid_argument(std::string(who) + ": " + what);
   };
-  if (in.facets.nodes_per_facet != 3 && in.facets.nodes_per_facet != 4)
-    fail("facets must have 3 or 4 nodes per facet, got " +
-         std::to_string(in.facets.nodes_per_facet));
+  const int k = in.facets.nodes_per_facet;
+  if (k != 3 && k != 4 && k != 6 && k != 9)
+    fail("facets must have 3, 4, 6 or 9 nodes per facet, got " + std::to_string(k));
   if (in.x.size() % 3) fail("x must hold 3 coordinates per contact node");
   const std::size_t nn = in.x.size() / 3;
   if (in.dofs.size() != 3 * nn) fail("dofs must hold 3 entries per contact node (like x)");
   const std::size_t np = in.point_area.size();
-  if (in.point_nodes.size() != 4 * np || in.point_weights.size() != 4 * np)
-    fail("point_nodes and point_weights must hold 4 entries per slave point (like point_area)");
+  const std::size_t stride = nodes_per_point(in);
+  if (stride < 1 || stride > static_cast<std::size_t>(max_slave_nodes) ||
+      in.point_nodes.size() != stride * np || in.point_weights.size() != stride * np)
+    fail("point_nodes and point_weights must hold the same number of entries, 1 to " +
+         std::to_string(max_slave_nodes) + ", per slave point (like point_area)");
   if (in.offsets.size() != np + 1) fail("offsets must have one entry per slave point plus one");
   if (in.offsets.front() != 0 ||
       in.offsets.back() != static_cast<std::int32_t>(in.candidates.size()))
@@ -34,6 +37,11 @@ void check_surface_input(const SurfaceContactInput& in, const char* who) {
   const auto nf = static_cast<std::int32_t>(in.facets.size());
   for (std::int32_t f : in.candidates)
     if (f < 0 || f >= nf) fail("a candidate facet index is out of range");
+}
+
+std::size_t nodes_per_point(const SurfaceContactInput& in) {
+  const std::size_t np = in.point_area.size();
+  return np == 0 ? 1 : in.point_nodes.size() / np;
 }
 
 void init_state(SurfaceContactState& s, std::size_t np) {
@@ -52,14 +60,15 @@ namespace {
 
 SlavePoint slave_point(const SurfaceContactInput& in, std::size_t p) {
   SlavePoint out;
-  for (int i = 0; i < max_slave_nodes; ++i) out.num_nodes += in.point_nodes[4 * p + i] >= 0;
+  const std::size_t stride = nodes_per_point(in);
+  for (std::size_t i = 0; i < stride; ++i) out.num_nodes += in.point_nodes[stride * p + i] >= 0;
   out.x.resize(3, out.num_nodes);
   out.weights.resize(out.num_nodes);
-  for (int i = 0, j = 0; i < max_slave_nodes; ++i) {
-    const std::int32_t n = in.point_nodes[4 * p + i];
+  for (std::size_t i = 0, j = 0; i < stride; ++i) {
+    const std::int32_t n = in.point_nodes[stride * p + i];
     if (n < 0) continue;
     out.x.col(j) = Eigen::Map<const Eigen::Vector3d>(&in.x[3 * static_cast<std::size_t>(n)]);
-    out.weights[j] = in.point_weights[4 * p + i];
+    out.weights[j] = in.point_weights[stride * p + i];
     out.node_storage[j++] = n;
   }
   return out;
@@ -107,6 +116,10 @@ template bool closed_normal_element<3>(const SurfaceContactInput&, const NarrowP
                                        SurfaceContactState&, ClosedPoint<3>&);
 template bool closed_normal_element<4>(const SurfaceContactInput&, const NarrowPhase&, std::size_t,
                                        SurfaceContactState&, ClosedPoint<4>&);
+template bool closed_normal_element<6>(const SurfaceContactInput&, const NarrowPhase&, std::size_t,
+                                       SurfaceContactState&, ClosedPoint<6>&);
+template bool closed_normal_element<9>(const SurfaceContactInput&, const NarrowPhase&, std::size_t,
+                                       SurfaceContactState&, ClosedPoint<9>&);
 
 void element_dofs(const SurfaceContactInput& in, std::span<const std::int32_t> nodes,
                   std::int32_t facet, std::span<std::int32_t> out) {

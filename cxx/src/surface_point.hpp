@@ -16,6 +16,9 @@ namespace hypercontact::detail {
 /// slave points, dofs, candidates and multipliers (the master's are NarrowPhase's).
 void check_surface_input(const SurfaceContactInput& in, const char* who);
 
+/// Entries of point_nodes (and point_weights) per slave point: 1 to max_slave_nodes.
+std::size_t nodes_per_point(const SurfaceContactInput& in);
+
 /// s with every per-point array sized for np points and the totals zero.
 void init_state(SurfaceContactState& s, std::size_t np);
 
@@ -57,5 +60,9 @@ extern template bool closed_normal_element<3>(const SurfaceContactInput&, const 
                                               std::size_t, SurfaceContactState&, ClosedPoint<3>&);
 extern template bool closed_normal_element<4>(const SurfaceContactInput&, const NarrowPhase&,
                                               std::size_t, SurfaceContactState&, ClosedPoint<4>&);
+extern template bool closed_normal_element<6>(const SurfaceContactInput&, const NarrowPhase&,
+                                              std::size_t, SurfaceContactState&, ClosedPoint<6>&);
+extern template bool closed_normal_element<9>(const SurfaceContactInput&, const NarrowPhase&,
+                                              std::size_t, SurfaceContactState&, ClosedPoint<9>&);
 
 }  // namespace hypercontact::detail

@@ -67,7 +67,7 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match=re.escape("master_x: expected shape (*, 3), got (12,)")):
         _cpp.find_candidates(np.zeros((5, 3)), x.ravel(), quad, 0.1)
     with pytest.raises(ValueError, match=re.escape(
-            "facets: expected shape (*, 3) or (*, 4), got (1, 5)")):
+            "facets: expected shape (*, 3), (*, 4), (*, 6) or (*, 9), got (1, 5)")):
         _cpp.find_candidates(np.zeros((5, 3)), x, np.array([[0, 1, 2, 3, 0]], np.int32), 0.1)
     with pytest.raises(IndexError, match=re.escape("facets[0, 2] = 4 is not a master node index")):
         _cpp.find_candidates(np.zeros((5, 3)), x, np.array([[0, 1, 4, 3]], np.int32), 0.1)

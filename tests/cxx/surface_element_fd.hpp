@@ -95,6 +95,14 @@ inline const NodeCoordinates triangle = placed({{0, 0, 0}, {1.2, 0.1, 0.1}, {0.2
 /// The weights of a slave point that is one node.
 inline const Eigen::VectorXd one_node = Eigen::VectorXd::Ones(1);
 
+/// ξ of node a of a facet of n nodes: corners, then edge midpoints, then the centre.
+inline Eigen::Vector2d node_xi(int n, int a) {
+  const int nc = (n == 3 || n == 6) ? 3 : 4;
+  if (a < nc) return facet_vertex_xi(n, a);
+  if (a < 2 * nc) return 0.5 * (facet_vertex_xi(n, a - nc) + facet_vertex_xi(n, a - nc + 1));
+  return {0.0, 0.0};
+}
+
 /// x_M(ξ) on facet m.
 inline Eigen::Vector3d surface_point(const NodeCoordinates& m, const Eigen::Vector2d& xi) {
   return m * facet_shape_functions(static_cast<int>(m.cols()), xi);

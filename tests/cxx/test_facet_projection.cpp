@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "surface_element_fd.hpp"
+
 namespace hypercontact {
 namespace {
 
@@ -29,33 +31,50 @@ bool is_finite(const FacetProjection& p) {
          p.normal.allFinite();
 }
 
+using test::node_xi;
+
 TEST(FacetShape, PartitionOfUnityNodalValuesAndDerivatives) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int n : {3, 4}) {
+  for (int n : {3, 4, 6, 9}) {
     for (int b = 0; b < n; ++b) {
-      const Eigen::VectorXd N = facet_shape_functions(n, facet_vertex_xi(n, b));
-      for (int a = 0; a < n; ++a) EXPECT_EQ(N[a], a == b ? 1.0 : 0.0);
+      const Eigen::VectorXd N = facet_shape_functions(n, node_xi(n, b));
+      for (int a = 0; a < n; ++a) EXPECT_NEAR(N[a], a == b ? 1.0 : 0.0, 1e-15) << n << " " << a;
     }
     for (int i = 0; i < 20; ++i) {
       const Eigen::Vector2d xi(u(rng), u(rng));
-      EXPECT_NEAR(facet_shape_functions(n, xi).sum(), 1.0, 1e-15);
-      const double h = 1e-6;
+      EXPECT_NEAR(facet_shape_functions(n, xi).sum(), 1.0, 1e-14);
+      // Σ N_a ξ_a = ξ: the facets reproduce linear fields (an affine facet stays affine).
+      Eigen::Vector2d reproduced = Eigen::Vector2d::Zero();
+      const Eigen::VectorXd N = facet_shape_functions(n, xi);
+      for (int a = 0; a < n; ++a) reproduced += N[a] * node_xi(n, a);
+      EXPECT_LE((reproduced - xi).norm(), 1e-14);
+      // The shape functions are at most quadratic along each ξ_α: central differences have no
+      // truncation error, only rounding (h = 1e-3).
+      const double h = 1e-3;
       for (int alpha = 0; alpha < 2; ++alpha) {
         const Eigen::Vector2d e = h * Eigen::Vector2d::Unit(alpha);
         const Eigen::VectorXd fd =
             (facet_shape_functions(n, xi + e) - facet_shape_functions(n, xi - e)) / (2 * h);
-        EXPECT_LE((fd - facet_shape_derivatives(n, xi).col(alpha)).cwiseAbs().maxCoeff(), 1e-9);
+        EXPECT_LE((fd - facet_shape_derivatives(n, xi).col(alpha)).cwiseAbs().maxCoeff(), 1e-11);
       }
-      const Eigen::Vector2d e1 = h * Eigen::Vector2d::Unit(0);
-      const Eigen::VectorXd fd12 = (facet_shape_derivatives(n, xi + e1).col(1) -
-                                    facet_shape_derivatives(n, xi - e1).col(1)) /
-                                   (2 * h);
-      EXPECT_LE((fd12 - facet_shape_mixed_derivatives(n)).cwiseAbs().maxCoeff(), 1e-9);
+      // Columns 11, 22, 12 of the second derivatives against differences of the first.
+      const Eigen::Matrix<double, Eigen::Dynamic, 3> d2N = facet_shape_second_derivatives(n, xi);
+      const Eigen::Vector2d e1 = h * Eigen::Vector2d::Unit(0), e2 = h * Eigen::Vector2d::Unit(1);
+      const auto dN = [n](const Eigen::Vector2d& x) { return facet_shape_derivatives(n, x); };
+      const Eigen::VectorXd fd11 = (dN(xi + e1).col(0) - dN(xi - e1).col(0)) / (2 * h);
+      const Eigen::VectorXd fd22 = (dN(xi + e2).col(1) - dN(xi - e2).col(1)) / (2 * h);
+      const Eigen::VectorXd fd12 = (dN(xi + e1).col(1) - dN(xi - e1).col(1)) / (2 * h);
+      const Eigen::VectorXd fd21 = (dN(xi + e2).col(0) - dN(xi - e2).col(0)) / (2 * h);
+      EXPECT_LE((fd11 - d2N.col(0)).cwiseAbs().maxCoeff(), 1e-11) << n;
+      EXPECT_LE((fd22 - d2N.col(1)).cwiseAbs().maxCoeff(), 1e-11) << n;
+      EXPECT_LE((fd12 - d2N.col(2)).cwiseAbs().maxCoeff(), 1e-11) << n;
+      EXPECT_LE((fd21 - d2N.col(2)).cwiseAbs().maxCoeff(), 1e-11) << n;
     }
   }
   EXPECT_THROW(facet_shape_functions(2, {0, 0}), std::invalid_argument);
   EXPECT_THROW(facet_shape_derivatives(5, {0, 0}), std::invalid_argument);
+  EXPECT_THROW(facet_shape_second_derivatives(8, {0, 0}), std::invalid_argument);
 }
 
 TEST(FacetProjection, FlatSquareFaceEdgeVertex) {

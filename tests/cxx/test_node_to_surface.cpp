@@ -141,7 +141,8 @@ TEST(NodeToSurface, WarpedQuadCurvatureTermsAreNeeded) {
   }
   const Eigen::Matrix2d metric = a.transpose() * a;
   Eigen::Matrix2d H = metric;
-  H(0, 1) = H(1, 0) = metric(0, 1) - r.dot(warped_quad * facet_shape_mixed_derivatives(4));
+  H(0, 1) = H(1, 0) =
+      metric(0, 1) - r.dot(warped_quad * facet_shape_second_derivatives(4, c.xi).col(2));
   const Eigen::MatrixXd K_exact = w * eps_n * (P.transpose() * P - B * H.inverse() * B.transpose());
   EXPECT_LE(relative_error(K_exact, c.tangent), 1e-12);  // the tests' formula is the kernel's
 

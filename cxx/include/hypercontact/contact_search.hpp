@@ -24,10 +24,13 @@ struct ContactCandidates {
 /// slave_x:         n × 3 slave point coordinates, row-major; all finite.
 /// master_x:        m × 3 master node coordinates, row-major; all finite.
 /// facets:          num_facets × nodes_per_facet indices into master_x, row-major.
-/// nodes_per_facet: 3 (triangles) or 4 (quadrilaterals); the node order does not matter.
+/// nodes_per_facet: 3, 6 (triangles) or 4, 9 (quadrilaterals); the node order does not matter.
+///                  The box is that of the nodes: a curved facet may bulge beyond it by up to
+///                  the distance of its edge nodes from the chords, which c must cover (the
+///                  callers' default c, the largest facet size, does).
 /// capture:         c, finite and ≥ 0.
 /// Throws std::invalid_argument (message naming the argument) on a size that is not a multiple
-/// of 3 or of nodes_per_facet, nodes_per_facet ∉ {3, 4}, a non-finite coordinate or a bad c;
+/// of 3 or of nodes_per_facet, nodes_per_facet ∉ {3, 4, 6, 9}, a non-finite coordinate or a bad c;
 /// std::out_of_range on a facet index outside [0, m); std::length_error if the number of
 /// candidate pairs does not fit the int32 offsets.
 ///

@@ -12,13 +12,16 @@
 namespace hypercontact {
 
 /// Master facets: facet f has the nodes nodes[k f], …, nodes[k f + k − 1], k = nodes_per_facet
-/// (3: linear triangles, 4: bilinear quadrilaterals), counter-clockwise seen from outside the
-/// master body (conventions of facet_shape.hpp).
+/// (3: linear triangles, 4: bilinear quadrilaterals, 6: quadratic triangles, 9: biquadratic
+/// quadrilaterals), corners counter-clockwise seen from outside the master body, then the edge
+/// nodes and the centre (conventions of facet_shape.hpp).
 struct FacetConnectivity {
   std::span<const std::int32_t> nodes;
   int nodes_per_facet = 4;
 
   std::size_t size() const { return nodes.size() / static_cast<std::size_t>(nodes_per_facet); }
+  /// Corners (= edges) of a facet: 3 for triangles, 4 for quadrilaterals.
+  int corners() const { return nodes_per_facet == 3 || nodes_per_facet == 6 ? 3 : 4; }
   std::int32_t node(std::size_t facet, int a) const {
     return nodes[static_cast<std::size_t>(nodes_per_facet) * facet + static_cast<std::size_t>(a)];
   }
@@ -44,7 +47,7 @@ struct ClosestFacet {
 /// Projects x_s onto every candidate facet (any order) and returns the closest. Ties (distances
 /// within 1e-12 (L + d), L the longest edge of the facets compared, d the distance) go to Face
 /// over Edge over Vertex, then to the lower facet index.
-/// Throws std::invalid_argument if candidates is empty, nodes_per_facet is not 3 or 4, sizes are
+/// Throws std::invalid_argument if candidates is empty, nodes_per_facet is not 3, 4, 6 or 9, sizes are
 /// inconsistent, x_s is not finite or a candidate facet is degenerate (the message names it);
 /// std::out_of_range on a candidate or node index out of range.
 ClosestFacet closest_facet(const Eigen::Vector3d& x_s, std::span<const std::int32_t> candidates,
@@ -58,8 +61,9 @@ enum class PairingStatus : std::int32_t {
 };
 
 /// A master surface: the current coordinates of its nodes (and possibly others', num_nodes × 3,
-/// row-major), its facets, and edge_neighbour (one entry per facet node): the facet across edge k
-/// (node k → k + 1) of facet f, −1 on the surface's boundary (its rim).
+/// row-major), its facets, and edge_neighbour (one entry per facet edge, facets.corners() per
+/// facet): the facet across edge k (corner k → k + 1) of facet f, −1 on the surface's boundary
+/// (its rim).
 struct MasterSurface {
   std::span<const double> x;
   FacetConnectivity facets;
@@ -93,14 +97,14 @@ struct PointPairing {
 /// No candidates: NoCandidate. Throws as closest_facet.
 class NarrowPhase {
  public:
-  /// Throws std::invalid_argument unless nodes_per_facet is 3 or 4, the sizes agree and every
+  /// Throws std::invalid_argument unless nodes_per_facet is 3, 4, 6 or 9, the sizes agree and every
   /// node and neighbour index is in range.
   explicit NarrowPhase(const MasterSurface& master);
 
   PointPairing pair(const Eigen::Vector3d& x_s, std::span<const std::int32_t> candidates) const;
 
   const MasterSurface& master() const { return master_; }
-  /// Per node of x: true if it ends an edge of the master surface without a neighbour.
+  /// Per node of x: true if it is a node of an edge of the master surface without a neighbour.
   bool on_rim(std::int32_t node) const { return rim_[static_cast<std::size_t>(node)] != 0; }
 
  private:

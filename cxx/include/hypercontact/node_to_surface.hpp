@@ -29,8 +29,8 @@ struct SurfaceContact {
 
 /// Contact element of a slave point x_s = Σ_i M_i x_i (i over the ns columns of `slave`; one
 /// slave node: ns = 1, M = 1; a Gauss point of a slave facet: the facet's shape functions at the
-/// point) against the master facet with nodes `master` (3 × 4 or 3 × 3, conventions of
-/// facet_projection.hpp), weight w ≥ 0 (the slave point's reference area) and penalty ε_N > 0.
+/// point) against the master facet with nodes `master` (3 × 3, 4, 6 or 9, conventions of
+/// facet_shape.hpp), weight w ≥ 0 (the slave point's reference area) and penalty ε_N > 0.
 ///
 /// With x the stacked 3 (ns + nm) coordinates and P(ξ) = [M_1 I … M_ns I, −N_1 I … −N_nm I],
 /// r = x_s − x_M(ξ*) = P(ξ*) x and g = r·n (n the outward facet normal at ξ*):
@@ -41,16 +41,17 @@ struct SurfaceContact {
 ///   residual R = ∂W/∂x = w ε_N Pᵀ r   (envelope theorem: ∂φ/∂ξ = 0 at ξ*),
 ///   tangent  K = ∂R/∂x = w ε_N [Pᵀ P − B T (Tᵀ H T)⁻¹ Tᵀ Bᵀ],
 ///            H = ∂²φ/∂ξ∂ξ: H_αβ = a_α·a_β − r·x_,αβ,  B = ∂²φ/∂x∂ξ: B_α = P_,αᵀ r − Pᵀ a_α,
-///            T = I (face), T = ξ_{k+1} − ξ_k (edge k: Tᵀ H T = |x_{k+1} − x_k|², the edge is
-///            straight), no correction at a vertex (K = w ε_N Pᵀ P).
+///            T = I (face), T = ξ_{k+1} − ξ_k (edge k, a straight line in ξ; on a straight edge
+///            Tᵀ H T = |x_{k+1} − x_k|², on a curved one it holds the edge's curvature), no
+///            correction at a vertex (K = w ε_N Pᵀ P).
 ///   p_N = ε_N ⟨−g⟩; open (g > 0): R = 0, K = 0, p_N = 0.
-/// K is exact and symmetric, with every curvature term (warped facets, g ≠ 0).
+/// K is exact and symmetric, with every curvature term (warped and curved facets, g ≠ 0).
 /// Off the face (Edge, Vertex) r is not along n: the force w ε_N |r| acts along r, and W jumps
 /// from ½ w ε_N |r|² to 0 where g changes sign with r ≠ 0.
 ///
 /// `projection` must be project_to_facet(master, x_s) at the current coordinates.
 /// Throws std::invalid_argument if w < 0, ε_N ≤ 0, sizes are inconsistent (weights.size() ≠
-/// slave.cols() ≥ 1, master not 3 × 3 or 3 × 4), any input is not finite, the projection is
+/// slave.cols() ≥ 1, master not 3 × 3, 4, 6 or 9), any input is not finite, the projection is
 /// inconsistent (local index out of range) or the facet is degenerate; std::runtime_error if
 /// the contact is closed at a face point where H is not positive definite (the slave point at a
 /// centre of curvature of the facet: the tangent does not exist). Never returns NaN.
@@ -83,7 +84,7 @@ requires FacetNodeCount<NM> SurfaceContact
 node_to_surface(const SlaveNodes& slave, const SlaveWeights& weights, const FacetNodes<NM>& master,
                 const FacetProjection& projection, double w, double eps_n, double touch = 0.0,
                 double lambda = 0.0, double smoothing = 0.0);
-/// The same for a slave point and a facet of run-time sizes (ns ≤ 4, 3 or 4 facet nodes).
+/// The same for a slave point and a facet of run-time sizes (ns ≤ 9; 3, 4, 6 or 9 facet nodes).
 SurfaceContact node_to_surface(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                const NodeCoordinates& master, const FacetProjection& projection,
                                double w, double eps_n, double touch = 0.0, double lambda = 0.0,
@@ -105,6 +106,12 @@ extern template SurfaceContact node_to_surface<3>(const SlaveNodes&, const Slave
                                                   double, double, double, double, double);
 extern template SurfaceContact node_to_surface<4>(const SlaveNodes&, const SlaveWeights&,
                                                   const FacetNodes<4>&, const FacetProjection&,
+                                                  double, double, double, double, double);
+extern template SurfaceContact node_to_surface<6>(const SlaveNodes&, const SlaveWeights&,
+                                                  const FacetNodes<6>&, const FacetProjection&,
+                                                  double, double, double, double, double);
+extern template SurfaceContact node_to_surface<9>(const SlaveNodes&, const SlaveWeights&,
+                                                  const FacetNodes<9>&, const FacetProjection&,
                                                   double, double, double, double, double);
 
 }  // namespace hypercontact

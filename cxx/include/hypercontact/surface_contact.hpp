@@ -28,12 +28,13 @@ struct SurfaceContactState {
 /// Geometry and numbering of one slave surface against one master surface.
 ///
 /// x: nn × 3 current coordinates of the contact nodes (all nodes of both surfaces);
-/// point_nodes, point_weights: np × 4 — slave point p is x_p = Σ_i M_pi x_{node_pi} over the
-///   entries with node ≥ 0 (nodal integration: one node with M = 1; Gauss points: 4 nodes);
+/// point_nodes, point_weights: np × k (1 ≤ k ≤ max_slave_nodes = 9) — slave point p is
+///   x_p = Σ_i M_pi x_{node_pi} over the entries with node ≥ 0 (nodal integration: one node with
+///   M = 1; Gauss points: the nodes of the slave facet, 3, 4, 6 or 9);
 /// point_area: np — the point's weight w_p (nodal area or det J × Gauss weight, reference);
-/// facets: nf master facets of nodes_per_facet nodes each (3: triangles, 4: quadrilaterals),
-///   nodes counter-clockwise seen from outside the master (narrow_phase.hpp);
-/// edge_neighbour: nf × nodes_per_facet — the master facet across edge k (node k → k+1) of
+/// facets: nf master facets of nodes_per_facet nodes each (3, 6: triangles, 4, 9:
+///   quadrilaterals), corners counter-clockwise seen from outside the master (narrow_phase.hpp);
+/// edge_neighbour: nf × corners (3 or 4) — the master facet across edge k (corner k → k+1) of
 ///   facet f, −1 on the master surface's boundary;
 /// offsets (np + 1), candidates: the broad phase's candidate facets of each point (CSR);
 /// dofs: nn × 3 global PETSc indices, −1 for a constrained dof (skipped: Dirichlet rows and

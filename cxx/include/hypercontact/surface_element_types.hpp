@@ -1,5 +1,5 @@
 // Eigen types of the deformable-master contact elements that live on the stack: a slave point of
-// at most four nodes, element vectors and matrices bounded by the largest element (dynamic
+// at most nine nodes, element vectors and matrices bounded by the largest element (dynamic
 // sizes within fixed maxima, so that an element allocates nothing on the heap).
 #pragma once
 
@@ -7,12 +7,15 @@
 
 namespace hypercontact {
 
-/// A slave point x_s = Σ_i M_i x_i has 1 (a node) to 4 (a Gauss point of a quadrilateral) nodes.
-constexpr int max_slave_nodes = 4;
-/// Unknowns of a normal element: 3 per slave node and per node of its facet (4 at most).
-constexpr int max_element_dofs = 3 * (max_slave_nodes + 4);
+/// A slave point x_s = Σ_i M_i x_i has 1 (a node) to 9 (a Gauss point of a biquadratic
+/// quadrilateral) nodes.
+constexpr int max_slave_nodes = 9;
+/// Nodes of the largest master facet (the biquadratic quadrilateral).
+constexpr int max_facet_nodes = 9;
+/// Unknowns of a normal element: 3 per slave node and per node of its facet.
+constexpr int max_element_dofs = 3 * (max_slave_nodes + max_facet_nodes);
 /// Unknowns of a friction element: those and the old facet's nodes.
-constexpr int max_friction_dofs = max_element_dofs + 3 * 4;
+constexpr int max_friction_dofs = max_element_dofs + 3 * max_facet_nodes;
 
 /// The slave point's node coordinates (3 × ns) and weights M_i (ns).
 using SlaveNodes = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, max_slave_nodes>;

@@ -81,7 +81,8 @@ requires FacetNodeCount<NM> && FacetNodeCount<NO> SurfaceFriction surface_fricti
     const FacetProjection& projection, const FacetNodes<NO>& old_master,
     const Eigen::Vector2d& xi_old, const Eigen::Vector3d& t_old, double w, double eps_n,
     double eps_t, double mu, double lambda = 0.0, double smoothing = 0.0);
-/// The same for a slave point and facets of run-time sizes (ns ≤ 4, 3 or 4 facet nodes).
+/// The same for a slave point and facets of run-time sizes (ns ≤ 9; 3 or 4 facet nodes, the old
+/// facet 3 or 4 too; or 6 or 9 facet nodes, the old facet alike).
 SurfaceFriction surface_friction(const NodeCoordinates& slave, const Eigen::VectorXd& weights,
                                  const NodeCoordinates& master, const FacetProjection& projection,
                                  const NodeCoordinates& old_master, const Eigen::Vector2d& xi_old,
@@ -104,6 +105,8 @@ HYPERCONTACT_SURFACE_FRICTION(3, 3)
 HYPERCONTACT_SURFACE_FRICTION(3, 4)
 HYPERCONTACT_SURFACE_FRICTION(4, 3)
 HYPERCONTACT_SURFACE_FRICTION(4, 4)
+HYPERCONTACT_SURFACE_FRICTION(6, 6)
+HYPERCONTACT_SURFACE_FRICTION(9, 9)
 #undef HYPERCONTACT_SURFACE_FRICTION
 
 }  // namespace hypercontact
