@@ -143,7 +143,9 @@ def test_failed_attempt_leaves_its_story_in_the_summary(out_dir):
         assert story["reason"] == "FORCED_FAILURE" and story["snes_reason"].startswith("CONVERGED_")
         its = story["newton_iterations"]
         assert its >= 2 and len(story["residual_norms"]) == its + 1 and len(story["update_norms"]) == its
-        assert len(story["open_closed_flips_per_iteration"]) == len(story["stick_slip_flips_per_iteration"]) == its
+        assert (len(story["open_closed_flips_per_iteration"]) == len(story["stick_slip_flips_per_iteration"])
+                == len(story["master_facet_flips_per_iteration"]) == its)
+        assert story["most_master_facet_flips"] == []  # rigid obstacles only: no master facets
         assert story["residual_norms"][-1] < 1e-6 * story["residual_norms"][0]
         assert story["active_set_changes"] >= 1 and story["stick_slip_changes"] >= 1
         for kind in ("open_closed", "stick_slip"):

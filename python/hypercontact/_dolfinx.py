@@ -255,6 +255,13 @@ def global_node_indices(V):
     return im.local_to_global(np.arange(im.size_local + im.num_ghosts, dtype=np.int32))
 
 
+def global_dofs(space, local):
+    """Global (PETSc) index of each of the process-local dofs ``local`` of ``space``."""
+    im, bs = space.dofmap.index_map, space.dofmap.index_map_bs
+    local = np.asarray(local, dtype=np.int64)
+    return im.local_to_global((local // bs).astype(np.int32)).astype(np.int64) * bs + local % bs
+
+
 def node_coordinates(V):
     """Reference coordinates of each process-local node, (n, 3)."""
     return V.tabulate_dof_coordinates()[:, :3]

@@ -53,9 +53,6 @@ RULES = [
     ("blocks", {"contact.0.master": "zmax+xmax", "contact.0.passes": 2}, "contact[0].passes",
      "single master surface"),
     ("blocks", {"contact.0.master": ""}, "contact[0].master", "needs the master surface's name"),
-    # deformable masters: trilinear displacements only (rigid obstacles take any)
-    ("blocks", {"discretisation": {"degree": 2, "quadrature_degree": 4}}, "contact[0].obstacle",
-     "a deformable master (obstacle = \"surface\") needs"),
     ("punch", {"mesh.cells": "tetrahedra", "mesh.grading": [2.0, 1.0, 1.0]}, "mesh.cells",
      "a graded box is built of hexahedra only"),
     ("sphere", {"mesh.cells": "tetrahedra"}, "mesh.cells", "applies to the box builder"),

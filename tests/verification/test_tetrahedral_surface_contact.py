@@ -64,20 +64,13 @@ def test_stacked_tetrahedral_blocks_are_in_the_homogeneous_state(integration, pa
     np.testing.assert_allclose(X[:, 1] + u[:, 1], lat * X[:, 1], atol=1e-7)
 
 
-def test_assembled_jacobian_with_friction_on_triangle_masters(tmp_path):
-    """Volume + normal + friction against 3-node master facets: after converged steps (history
-    set), a perturbed state whose upper block moves on sideways — points in stick and in slip —
-    every free entry of the assembled matrix equals the central difference of the assembled
-    residual to 1e-6 of the largest entry."""
+def sliding_jacobian_error(sim):
+    """After ``sim`` ran (friction history set): a perturbed state whose upper block moves
+    on sideways, points in stick and in slip (asserted); (error, largest entry) of the
+    assembled matrix against central differences of the assembled residual."""
     from hypercontact import _dolfinx as dfx
     from reference.finite_differences import constrained_dofs, simulation_jacobian_error
 
-    msh = tmp_path / "stack.msh"
-    write_stack_msh(msh)
-    s = stack_scene(tmp_path, msh)
-    s["contact"][2]["mu"] = 0.3
-    sim = Simulation(scene.load(s), MPI.COMM_SELF, log=quiet)
-    sim.run()
     constrained = constrained_dofs(sim)
     rng = np.random.default_rng(7)
     u = sim.w.x.array
@@ -92,4 +85,19 @@ def test_assembled_jacobian_with_friction_on_triangle_masters(tmp_path):
     state = np.asarray(interface.evaluate(sim.u).state)
     assert np.count_nonzero(state == 1) >= 2 and np.count_nonzero(state == 2) >= 2
     err, scale, J, free = simulation_jacobian_error(sim, constrained)
+    return err, scale
+
+
+def test_assembled_jacobian_with_friction_on_triangle_masters(tmp_path):
+    """Volume + normal + friction against 3-node master facets: after converged steps (history
+    set), a perturbed state whose upper block moves on sideways — points in stick and in slip —
+    every free entry of the assembled matrix equals the central difference of the assembled
+    residual to 1e-6 of the largest entry."""
+    msh = tmp_path / "stack.msh"
+    write_stack_msh(msh)
+    s = stack_scene(tmp_path, msh)
+    s["contact"][2]["mu"] = 0.3
+    sim = Simulation(scene.load(s), MPI.COMM_SELF, log=quiet)
+    sim.run()
+    err, scale = sliding_jacobian_error(sim)
     assert err < 1e-6 * scale

@@ -67,15 +67,16 @@ def _surface_law(entry, settings, geometry, comm, mu_max):
     return law
 
 
-def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path, u_dofs=None):
+def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path, u_dofs=None, u_global=None):
     """(contacts, settings) of the scene's [[contact]] entries, in order (a
     two-pass surface contact gives two, the second named <name>_pass2).
     ``tag_of(surface, key)``: the facet tag of a named surface (raising a
     SceneError naming ``key``); ``material_of(surface)``: the material entry
     of the body a slave surface belongs to (for the automatic ε_N); ``path``:
     the scene's :class:`~hypercontact.scene.path.LoadPath` (a contact whose μ
-    is > 0 anywhere on it gets the Coulomb law); ``u_dofs``: where V's dofs sit
-    in the unknown (mixed formulation), else None."""
+    is > 0 anywhere on it gets the Coulomb law); ``u_dofs``, ``u_global``:
+    where V's process-local dofs sit in the unknown, locally and globally
+    (mixed formulation), else None."""
     contacts, settings = [], []
     for i, entry in enumerate(scene["contact"]):
         slave = tag_of(entry["surface"], f"contact[{i}].surface")
@@ -91,25 +92,23 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path,
         for k, (name, slaves, masters) in enumerate(pairs):
             s = ContactSettings(name, eps_n, float(entry["eps_t"] or eps_n), gap_tolerance,
                                 penalty.smoothing_band(entry, V, facet_tags, slaves), note if k == 0 else None)
-            contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i), u_dofs)
+            contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i), u_dofs,
+                            u_global)
             contact.index = i
             contacts.append(contact)
             settings.append(s)
     return contacts, settings
 
 
-def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max, u_dofs):
+def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max, u_dofs, u_global):
     comm = V.mesh.comm
     if masters is None:
         geometry = RigidObstacle(entry, V, facet_tags, slaves[0], constrained, u_dofs)
         law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if mu_max > 0
                else Frictionless())
     else:
-        if u_dofs is not None or dfx.degree_of(V) != 1:
-            raise ValueError(f"contact {s.name!r}: a deformable master needs linear elements (displacement or sri "
-                             f"formulation with degree 1)")
         geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
-                                  entry["capture"], s.name)
+                                  entry["capture"], s.name, u_dofs, u_global)
         law = Frictionless() if second else _surface_law(entry, s, geometry, comm, mu_max)
     enforcement = _enforcement(s, entry, len(geometry.point_area))
     return Contact(s.name, geometry, law, enforcement, s.eps_n, s.smoothing, entry)

@@ -155,6 +155,14 @@ class Contact:
         status[self.geometry.closed(self.state, self.augmented)] = 2
         return status
 
+    def point_facets(self):
+        """Per slave point of this rank: the master facet it is paired with, −1 where
+        none (a rigid obstacle, a point off the master, the contact switched off)."""
+        facets = np.full(len(self.geometry.point_area), -1, np.int32)
+        if self.on and self.deformable:
+            facets[:] = self.state.facet
+        return facets
+
     def point_coordinates(self, u):
         """(reference, current) coordinates of this rank's slave points. Collective."""
         return self.geometry.point_coordinates(u)

@@ -12,9 +12,16 @@ indices into the PETSc vector and matrix; rows owned by another rank travel
 with PETSc's assembly.
 
 Slave points. Nodal integration (the paper): one point per slave node with
-the node's area. Gauss-point integration: the 2 × 2 Gauss points of every
-slave facet, each a combination Σ M_i x_i of the facet's nodes with weight
-det J × w_q.
+the node's area (quadratic elements: the positive weights of
+:func:`~.surface_mesh.nodal_areas`). Gauss-point integration: the Gauss
+points of every slave facet (2 × 2 on bilinear, 3 × 3 on biquadratic
+quadrilaterals, 3 and 6 on linear and quadratic triangles), each a
+combination Σ M_i x_i of the facet's nodes with weight det J × w_q.
+
+Master facets have all the nodes of the displacement's boundary facets:
+3 or 4 with linear elements, 6 or 9 (curved) with quadratic ones. In the
+mixed formulation the contact reads and assembles the displacement block of
+the unknown (``u_dofs``, ``u_global``).
 
 Pairing. The broad phase (C++ ``find_candidates``) lists for every slave
 point the master facets whose box, inflated by the capture distance, contains
@@ -29,7 +36,8 @@ from mpi4py import MPI
 
 from .. import _cpp
 from .. import _dolfinx as dfx
-from .surface_mesh import edge_neighbours, facet_gauss_points, gauss_points, nodal_areas, surface_facets
+from .surface_mesh import (edge_neighbours, facet_gauss_points, gauss_points, nodal_areas, surface_facet_nodes,
+                           surface_facets)
 
 #: C++ PairingStatus::Paired
 PAIRED = 2
@@ -41,22 +49,32 @@ class SurfacePairing:
     #: adds rows anywhere, by global index: the matrix pattern follows the pairing
     assembly = "global"
 
-    def __init__(self, V, facet_tags, slave_tags, master_tags, constrained, integration, capture, name):
+    def __init__(self, V, facet_tags, slave_tags, master_tags, constrained, integration, capture, name,
+                 u_dofs=None, u_global=None):
+        """``constrained``: mask of the unknown's process-local dofs; ``u_dofs``,
+        ``u_global``: the local and global indices in the unknown of V's local
+        dofs (the mixed formulation), None if the unknown is the displacement."""
         self.comm = comm = V.mesh.comm
         gidx = dfx.global_node_indices(V).astype(np.int64)
-        slave_quads = np.concatenate([surface_facets(V, facet_tags, t) for t in slave_tags])
-        master_quads = np.concatenate([surface_facets(V, facet_tags, t) for t in master_tags])
-        self._share_contact_nodes(V, gidx, np.concatenate([slave_quads.ravel(), master_quads.ravel()]), constrained)
+        facets_of = surface_facet_nodes if dfx.degree_of(V) == 2 else surface_facets
+        slave_quads = np.concatenate([facets_of(V, facet_tags, t) for t in slave_tags])
+        master_quads = np.concatenate([facets_of(V, facet_tags, t) for t in master_tags])
+        self._u_dofs = u_dofs
+        self._num_v_dofs = 3 * dfx.num_local_nodes(V)
+        v_constrained = constrained if u_dofs is None else constrained[u_dofs]
+        self._share_contact_nodes(V, gidx, np.concatenate([slave_quads.ravel(), master_quads.ravel()]),
+                                  v_constrained, u_global)
 
         def to_contact(local_nodes):
             return np.searchsorted(self.global_ids, gidx[local_nodes]).astype(np.int32)
 
-        k = master_quads.shape[1]  # 4: quadrilaterals (hexahedra), 3: triangles (tetrahedra)
+        k = master_quads.shape[1]  # 4, 9: quadrilaterals (hexahedra), 3, 6: triangles (tetrahedra)
         mq = to_contact(master_quads.ravel()).reshape(-1, k)  # each boundary facet is on one rank
         self.facets = np.ascontiguousarray(np.concatenate(comm.allgather(mq))) if comm.size > 1 else mq
         if len(self.facets) == 0:
             raise ValueError(f"contact {name!r}: the master surface has no facets")
-        self.edge_neighbour = edge_neighbours(self.facets)
+        corners = 3 if k in (3, 6) else 4
+        self.edge_neighbour = np.ascontiguousarray(edge_neighbours(np.ascontiguousarray(self.facets[:, :corners])))
         if integration == "nodal":
             area = sum(nodal_areas(V, facet_tags, t) for t in slave_tags)
             nodes = np.flatnonzero(area > 0.0)
@@ -70,10 +88,12 @@ class SurfacePairing:
             sq = to_contact(slave_quads.ravel()).reshape(-1, slave_quads.shape[1])
             if sq.shape[1] == 4:
                 self.point_nodes, self.point_weights, self.point_area = gauss_points(sq, self.X)
-            else:  # the 3 Gauss points of each triangle, padded to 4 nodes (the 4th: none, weight 0)
+            elif sq.shape[1] == 3:  # the 3 Gauss points of each triangle, padded to 4 nodes (the 4th: none)
                 nodes, weights, self.point_area = facet_gauss_points(sq, self.X)
                 self.point_nodes = np.hstack([nodes, np.full((len(nodes), 1), -1, np.int32)])
                 self.point_weights = np.hstack([weights, np.zeros((len(nodes), 1))])
+            else:  # curved slave facets: 3 × 3 or 6 points, each over the facet's 9 or 6 nodes
+                self.point_nodes, self.point_weights, self.point_area = facet_gauss_points(sq, self.X)
             self.nodes = None
         self.num_points = comm.allreduce(len(self.point_area), op=MPI.SUM)
         size = np.linalg.norm(self.X[self.facets[:, 2]] - self.X[self.facets[:, 0]], axis=1).max()
@@ -83,22 +103,27 @@ class SurfacePairing:
         self.repairings = 0
         self.load_factor = 0.0
 
-    def _share_contact_nodes(self, V, gidx, local_nodes, constrained):
+    def _share_contact_nodes(self, V, gidx, local_nodes, constrained, u_global=None):
         """Every node of either surface, known on all ranks: global ids, reference coordinates
-        and global dofs (−1 where constrained), ordered by global id."""
+        and global dofs (−1 where constrained; in the unknown's numbering ``u_global`` if
+        given, else 3 × node + component), ordered by global id."""
         comm, n_owned = self.comm, dfx.num_owned_nodes(V)
         local_ids = np.unique(gidx[local_nodes])
         all_ids = np.unique(np.concatenate(comm.allgather(local_ids))) if comm.size > 1 else local_ids
         self.num_nodes = len(all_ids)
         self.owned_local = np.flatnonzero(np.isin(gidx[:n_owned], all_ids)).astype(np.int32)
+        unknown = None if u_global is None else u_global.reshape(-1, 3)[self.owned_local]
         data = comm.allgather((gidx[self.owned_local], dfx.node_coordinates(V)[self.owned_local],
-                               constrained.reshape(-1, 3)[self.owned_local]))
+                               constrained.reshape(-1, 3)[self.owned_local], unknown))
         ids = np.concatenate([d[0] for d in data])
         order = np.argsort(ids)
         assert np.array_equal(ids[order], all_ids), "every contact node must have one owner"
         self._gather_order = order
         self.X = np.ascontiguousarray(np.concatenate([d[1] for d in data])[order])
-        dofs = 3 * all_ids[:, None] + np.arange(3)
+        if u_global is None:
+            dofs = 3 * all_ids[:, None] + np.arange(3)
+        else:
+            dofs = np.concatenate([d[3] for d in data])[order].astype(np.int64)
         dofs[np.concatenate([d[2] for d in data])[order]] = -1  # constrained: Dirichlet rows stay exact
         self.dofs = np.ascontiguousarray(dofs.astype(np.int32))
         self.global_ids = all_ids
@@ -112,8 +137,13 @@ class SurfacePairing:
 
     # --- coordinates -----------------------------------------------------------
     def coordinates(self, u):
-        """Current coordinates of all contact nodes (every rank). Collective."""
-        mine = np.ascontiguousarray(u.x.array.reshape(-1, 3)[self.owned_local])
+        """Current coordinates of all contact nodes (every rank); u the
+        displacement or (mixed formulation) the unknown it is part of. Collective."""
+        values = u.x.array
+        if values.size == self._num_v_dofs:
+            mine = np.ascontiguousarray(values.reshape(-1, 3)[self.owned_local])
+        else:
+            mine = np.ascontiguousarray(values[self._u_dofs.reshape(-1, 3)[self.owned_local]])
         parts = self.comm.allgather(mine) if self.comm.size > 1 else [mine]
         return np.ascontiguousarray(self.X + np.concatenate(parts)[self._gather_order])
 

@@ -41,7 +41,8 @@ class Model:
         self.phase = 0  # the phase the load factor runs in
         self.contacts, self.contact_settings = build_contacts(
             scene, self.V, self.body.facet_tags, self.tag, self.constraints.constrained, self.material_of,
-            self.path, vol.u_dofs)
+            self.path, vol.u_dofs,
+            None if vol.u_dofs is None else dfx.global_dofs(self.w.function_space, vol.u_dofs))
         size = comm.allreduce(np.ptp(self.body.mesh.geometry.x, axis=0).max(), op=MPI.MAX)
         self.probes = {name: Probe(name, p, self.V, 1e-6 * size) for name, p in scene["output"]["probes"].items()}
         self.problem = Problem(self.w, R, J, self.bcs, self.contacts, timers)

@@ -17,8 +17,10 @@
   the residual norms of its last solve (one per iterate: iterations + 1),
   the Newton-update norms, the numbers of iterations in which the active
   set and the stick/slip set changed, per iteration the numbers of slave
-  points that flipped open ↔ closed and stick ↔ slip, the points that
-  flipped most (``most_open_closed_flips``, ``most_stick_slip_flips``:
+  points that flipped open ↔ closed and stick ↔ slip and, closed against
+  a deformable master, switched master facet, the points that flipped most
+  (``most_open_closed_flips``, ``most_stick_slip_flips``,
+  ``most_master_facet_flips``:
   contact, flips, reference ``point`` and ``current`` coordinates at the
   last iterate), the augmentations, and, when its last iterate has
   det F ≤ 0 somewhere, ``inverted_element`` (input cell index, reference

@@ -60,21 +60,6 @@ def incompressible_needs_mixed(s):
                           loc + ("parameters", "K"))
 
 
-def deformable_masters_need_linear_displacements(s):
-    """A deformable master's facets are bilinear quadrilaterals or linear
-    triangles in the C++ kernels: its surface must be of degree-1 elements.
-    Rigid obstacles take slave nodes of any degree and formulation."""
-    disc = s.discretisation
-    if disc.formulation != "mixed" and disc.degree == 1:
-        return
-    found = f'"mixed"' if disc.formulation == "mixed" else f"degree {disc.degree}"
-    for i, entry in enumerate(s.contact):
-        if isinstance(entry, SurfaceContact):
-            raise Invalid(f"a deformable master (obstacle = \"surface\") needs the displacement or sri formulation "
-                          f"with degree 1, found {found}: quadratic master facets are not implemented; rigid "
-                          f"obstacles take quadratic and mixed elements", ("contact", i, "obstacle"))
-
-
 def surfaces(s):
     """Surface name → axis of its normal (None: curved) of a built mesh,
     the [[body]] surfaces prefixed with the body's name; None for a file."""
@@ -366,7 +351,7 @@ def phase_curves_do_not_jump(s):
 
 
 RULES = (several_bodies_need_one_built_mesh, split_formulations_need_builtin_laws, incompressible_needs_mixed,
-         deformable_masters_need_linear_displacements, surfaces_exist, pressures_do_work,
+         surfaces_exist, pressures_do_work,
          automatic_penalty_needs_builtin_law, probes_in_body, loads_have_values, phases_name_what_exists,
          phases_have_valid_settings, phase_curves_do_not_jump, continuation_needs_a_stop_probe_and_a_load,
          continuation_needs_fixed_contacts)

@@ -20,6 +20,16 @@ class Discretisation(SceneModel):
     formulation: string(one_of(FORMULATIONS, '"displacement", "sri" (selective reduced integration) or "mixed" '
                                              '(Taylor–Hood u–p)')) = "displacement"
 
+    @root_validator(pre=True)
+    def quadrature_follows_the_elements(cls, values):
+        """Without an explicit quadrature_degree: 2 (2×2×2 Gauss points) for linear
+        elements, 4 (3×3×3) for quadratic and mixed ones — fewer leave the
+        triquadratic hexahedron zero-energy (hourglass) modes."""
+        if "quadrature_degree" not in values:
+            quadratic = values.get("degree") == 2 or values.get("formulation") == "mixed"
+            values = {**values, "quadrature_degree": 4 if quadratic else 2}
+        return values
+
     @root_validator(skip_on_failure=True)
     def mixed_has_enough_points(cls, values):
         if values["formulation"] == "mixed" and values["quadrature_degree"] < 4:

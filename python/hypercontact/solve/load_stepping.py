@@ -121,6 +121,12 @@ class LoadStepping:
                           for what, key in (("contact active set", "active_set_changes"),
                                             ("stick/slip status", "stick_slip_changes"))
                           if story[key] >= warn)
+        switching = sum(1 for n in story["master_facet_flips_per_iteration"] if n > 0)
+        if switching >= warn:
+            first = story["most_master_facet_flips"][0]
+            chatter += (f"; slave points switched master facet in {switching} Newton iterations (on a kink of "
+                        f"the master, e.g. over an edge between two facets: {first['contact']!r} at "
+                        f"{tuple(round(v, 4) for v in first['point'])})")
         where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
         self.log(f"   step at λ = {lam:.4f} + {dlam:.3g} failed ({reason}, {its} its{chatter}{where}); "
                  + ("no cut-back left" if stop else f"cut back to Δλ = {0.5 * dlam:.3g}"))

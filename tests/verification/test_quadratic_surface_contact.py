@@ -1,0 +1,121 @@
+"""Contact against a deformable master of quadratic elements (9-node
+quadrilateral and 6-node triangle master facets): two blocks of second-order
+hexahedra or tetrahedra meshed apart in one .msh, stacked between
+frictionless rigid planes. With matching meshes node-to-surface contact passes
+the patch test, so the homogeneous state of the closed form
+(tests/reference/stack.py, independent of the code) holds: forces, the
+lateral stretch at every node, the interface pressure at every slave point —
+for the displacement and the mixed (Taylor–Hood) formulation, single- and
+two-pass, and under 2 ranks. Then the assembled tangent with friction against
+both kinds of curved master facet, against central differences."""
+import numpy as np
+import pytest
+from conftest import quiet
+from mpi4py import MPI
+
+from hypercontact import scene
+from hypercontact.simulation import Simulation
+from reference.homogeneous import mooney_rivlin_principal
+from reference.stack import stacked_block, write_stack_msh
+from conftest import ROOT
+from test_tetrahedral_surface_contact import D, EPS, PARAMS, sliding_jacobian_error, stack_scene
+
+ROOT_SCENES = ROOT / "scenes"
+
+#: (cells, formulation, integration, passes) whose slave integration of a uniform pressure is
+#: exact: 9-node quadrilateral nodal weights ∫N_i dA are positive and consistent, Gauss points
+#: always are (the corner weights of a 6-node triangle vanish, so its nodes are no rule).
+EXACT = [
+    ("hexahedra", "displacement", "nodal", 1),
+    ("hexahedra", "displacement", "gauss", 1),
+    ("hexahedra", "displacement", "nodal", 2),
+    ("hexahedra", "mixed", "nodal", 1),
+    ("tetrahedra", "displacement", "gauss", 1),
+    ("tetrahedra", "displacement", "gauss", 2),
+    ("tetrahedra", "mixed", "gauss", 1),
+]
+
+
+def quadratic_stack_scene(out, msh, formulation="displacement", integration="nodal", passes=1):
+    s = stack_scene(out, msh, integration, passes)
+    s["discretisation"] = {"degree": 2, "formulation": formulation}  # quadrature degree 4 by default
+    return s
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("cells, formulation, integration, passes", EXACT)
+def test_stacked_quadratic_blocks_are_in_the_homogeneous_state(cells, formulation, integration, passes,
+                                                                out_dir):
+    msh = out_dir / "stack.msh"
+    write_stack_msh(msh, cells=cells, order=2)
+    sim = Simulation(scene.load(quadratic_stack_scene(out_dir, msh, formulation, integration, passes)),
+                     MPI.COMM_WORLD, log=quiet)
+    assert sim.V.ufl_element().degree() == 2
+    sim.run()
+    top, base, *interface = sim.contacts
+    assert interface[0].geometry.facets.shape[1] == (9 if cells == "hexahedra" else 6)
+    # two-pass on matching meshes: each surface is slave once and both passes press, ε_i = 2 ε_N
+    lat, l3, P3 = stacked_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, D, EPS,
+                                passes * EPS)
+    assert top.force(sim.u)[2] == pytest.approx(P3, rel=1e-6)
+    assert base.force(sim.u)[2] == pytest.approx(-P3, rel=1e-6)
+    for c in interface:  # the upper block's bottom is pressed up by −P3 / passes from each pass
+        f = c.force(sim.u)[2]
+        assert (f if c is interface[0] else -f) == pytest.approx(-P3 / passes, rel=1e-6)
+    for c in interface:  # every slave point of every pass closed, at the one uniform pressure
+        p = np.concatenate(MPI.COMM_WORLD.allgather(c.state.pressure))
+        area = np.concatenate(MPI.COMM_WORLD.allgather(c.geometry.point_area))
+        assert len(p) >= 25 and np.all(p[area > 0] > 0)
+        np.testing.assert_allclose(p[area > 0], -P3 / passes, rtol=1e-6)
+    X = sim.V.tabulate_dof_coordinates()[: sim.V.dofmap.index_map.size_local]
+    u = sim.u.x.array.reshape(-1, 3)[: len(X)]
+    np.testing.assert_allclose(X[:, 0] + u[:, 0], lat * X[:, 0], atol=1e-7)
+    np.testing.assert_allclose(X[:, 1] + u[:, 1], lat * X[:, 1], atol=1e-7)
+
+
+@pytest.mark.parametrize("cells", ["hexahedra", "tetrahedra"])
+def test_assembled_jacobian_with_friction_on_curved_masters(cells, tmp_path):
+    """Volume + normal + friction against 9-node and 6-node master facets of curved
+    (second-order) meshes: after converged steps (history set), a perturbed state whose
+    upper block moves on sideways — points in stick and in slip — every free entry of
+    the assembled matrix equals the central difference of the assembled residual to
+    1e-6 of the largest entry."""
+    msh = tmp_path / "stack.msh"
+    write_stack_msh(msh, cells=cells, order=2)
+    s = quadratic_stack_scene(tmp_path, msh)
+    s["contact"][2]["mu"] = 0.3
+    sim = Simulation(scene.load(s), MPI.COMM_SELF, log=quiet)
+    sim.run()
+    err, scale = sliding_jacobian_error(sim)
+    assert err < 1e-6 * scale
+
+
+def test_a_point_over_a_kinked_master_edge_is_named_in_the_failure_story(tmp_path):
+    """The patch-test blocks (5 × 5 slave facets on 4 × 4 master facets) with quadratic
+    elements and ε_N = 10⁴: the slave nodes on x = 0.5 or y = 0.5 lie exactly over an
+    inner edge of the master, which the non-uniform contact pressure kinks; such a node
+    switches between the two facets every Newton iteration and the step cannot
+    converge (a limitation of node-to-surface contact on a C0 master). The run stops
+    with that diagnosis: the failed attempt's story counts the facet switches and
+    names the points, all on those lines of the interface."""
+    import json
+
+    from hypercontact.simulation import StepFailure
+
+    s = scene.load(ROOT_SCENES / "blocks.toml", overrides=[
+        "discretisation.degree=2", "contact.0.eps_n=1e4", "steps.max_cutbacks=0", "output.xdmf=false",
+        f'output.dir="{tmp_path}"'])
+    messages = []
+    sim = Simulation(s, MPI.COMM_SELF, log=messages.append)
+    with pytest.raises(StepFailure):
+        sim.run()
+    [story] = json.loads((tmp_path / "summary.json").read_text())["failed_attempts"]
+    switches = story["master_facet_flips_per_iteration"]
+    assert len(switches) == story["newton_iterations"] and sum(n > 0 for n in switches) >= 10
+    named = story["most_master_facet_flips"]
+    assert len(named) == 5 and named[0]["flips"] >= 10
+    for f in named:
+        x, y, z = f["point"]
+        assert f["contact"] == "interface" and abs(z - 0.5) < 1e-9
+        assert min(abs(x - 0.5), abs(y - 0.5)) < 1e-9
+    assert any("switched master facet" in m for m in messages)
