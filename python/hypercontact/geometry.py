@@ -3,11 +3,13 @@
 Every mesh comes with named boundary surfaces (gmsh physical groups), which
 scenes refer to by name (e.g. ``slave = "zmax"``, ``surface = "xmin"``).
 """
+import difflib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from . import _dolfinx as dfx
+from .scene import SceneError
 
 
 @dataclass
@@ -352,15 +354,31 @@ def build_bodies(comm, parts):
 
 def build_mesh(comm, mesh, bodies=()):
     """The Body of a scene's [mesh] spec and its [[body]] entries: the one
-    place a builder name becomes a mesh. Several bodies, or a graded box, are
-    built as arrays into one mesh (build_bodies); one body from a file, the
-    shell octant or a box through gmsh."""
+    place a builder name becomes a mesh. A file is read through gmsh, its
+    [[body]] entries physical volumes of it; several built bodies, or a graded
+    box, are built as arrays into one mesh (build_bodies); one body, the
+    shell octant or a box, through gmsh."""
+    if mesh["builder"] == "file":
+        body = read_msh(comm, mesh["file"])
+        for i, b in enumerate(bodies):
+            if b["volume"] not in body.regions:
+                close = difflib.get_close_matches(b["volume"], list(body.regions), n=1)
+                raise SceneError(f"scene key 'body[{i}].volume': mesh file {mesh['file']!r} has no physical "
+                                 f"volume {b['volume']!r} (it has {', '.join(body.regions)})"
+                                 + (f"; did you mean '{close[0]}'?" if close else ""))
+        return body
     if bodies or any(g != 1.0 for g in mesh["grading"]):
         return build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in bodies])
-    if mesh["builder"] == "file":
-        return read_msh(comm, mesh["file"])
     if mesh["builder"] == "shell_octant":
         from .shell import build_shell_octant
 
         return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
     return build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"], mesh.get("cells", "hexahedra"))
+
+
+def surface_regions(body, tag):
+    """The regions (sorted names) whose cells the facets with ``tag`` bound, on every rank."""
+    cells = dfx.facet_cells(body.mesh, dfx.facets_with_tag(body.facet_tags, tag))
+    tags = set(body.cell_tags.values[np.isin(body.cell_tags.indices, cells)].tolist())
+    tags = set().union(*body.mesh.comm.allgather(tags))
+    return sorted(name for name, t in body.regions.items() if t in tags)
