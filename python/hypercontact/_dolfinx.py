@@ -74,9 +74,10 @@ def watch_jit_compilation(listener):
 
 
 def mesh_from_gmsh(model, comm):
-    """Distribute the gmsh model living on rank 0; return (mesh, facet_tags)."""
-    mesh, _, facet_tags = gmshio.model_to_mesh(model, comm, 0, gdim=3)
-    return mesh, facet_tags
+    """Distribute the gmsh model living on rank 0; return (mesh, cell_tags,
+    facet_tags), the cells tagged by their physical volume (only cells of
+    physical volumes become cells)."""
+    return gmshio.model_to_mesh(model, comm, 0, gdim=3)
 
 
 def vector_space(mesh, degree):

@@ -3,11 +3,13 @@
 Every mesh comes with named boundary surfaces (gmsh physical groups), which
 scenes refer to by name (e.g. ``slave = "zmax"``, ``surface = "xmin"``).
 """
+import difflib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from . import _dolfinx as dfx
+from .scene import SceneError
 
 
 @dataclass
@@ -97,7 +99,8 @@ def build_box(comm, size, n, m, origin=(0.0, 0.0, 0.0), cells="hexahedra"):
 
 
 def read_msh(comm, path):
-    """A body from a gmsh .msh file with named physical surfaces."""
+    """A body from a gmsh .msh file with named physical surfaces; its cells
+    tagged by physical volume (regions: physical volume name → tag)."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"mesh file {str(path)!r} does not exist")
@@ -110,6 +113,7 @@ def read_msh(comm, path):
         if not g.model.getEntities(3):
             raise ValueError(f"mesh file {str(path)!r} has no volume (3D) elements")
         check_volume_elements(g, path)
+        return physical_volumes(g, path)
 
     return _from_gmsh(comm, load)
 
@@ -133,6 +137,29 @@ def check_volume_elements(gmsh, path):
                          f"one order per mesh")
 
 
+def physical_volumes(gmsh, path):
+    """Physical volume name → tag of the model (an unnamed one is named by
+    its tag, "7"). ValueError if a meshed volume is in no physical volume
+    (dolfinx reads the cells of physical volumes only) or in two (its cells
+    would be made twice)."""
+    names, owner = {}, {}
+    for _, tag in gmsh.model.getPhysicalGroups(3):
+        name = gmsh.model.getPhysicalName(3, tag) or str(tag)  # gmsh gives a name to one group only
+        names[name] = tag
+        for entity in gmsh.model.getEntitiesForPhysicalGroup(3, tag):
+            if int(entity) in owner:
+                raise ValueError(f"mesh file {str(path)!r}: volume {entity} is in the physical volumes "
+                                 f"{owner[int(entity)]!r} and {name!r}: a cell can be in one only")
+            owner[int(entity)] = name
+    orphans = [tag for _, tag in gmsh.model.getEntities(3) if tag not in owner and
+               len(gmsh.model.mesh.getElementTypes(3, tag))]
+    if orphans:
+        raise ValueError(f"mesh file {str(path)!r}: the elements of volume {', '.join(map(str, orphans))} are "
+                         f"in no physical volume (its physical volumes: {', '.join(names) or 'none'}): put "
+                         "every meshed volume in one")
+    return names
+
+
 def _raise_everywhere(comm, error):
     """Raise rank 0's error (if any) on every rank, resetting gmsh."""
     error = comm.bcast(error, root=0)
@@ -143,22 +170,24 @@ def _raise_everywhere(comm, error):
 
 
 def _from_gmsh(comm, make):
+    """The Body of the gmsh model ``make(gmsh)`` makes on rank 0; its return
+    value: the regions (None: one body)."""
     gmsh = _gmsh() if comm.rank == 0 else None
-    error, names = None, None
+    error, names, regions = None, None, None
     if comm.rank == 0:
         gmsh.clear()
         gmsh.option.setNumber("Mesh.ElementOrder", 1)  # the builders mesh first order, whatever ran before
         try:
-            make(gmsh)
+            regions = make(gmsh)
             names = _physical_surface_names(gmsh)
         except Exception as err:
             error = err
     _raise_everywhere(comm, error)
-    names = comm.bcast(names, root=0)
-    mesh, facet_tags = dfx.mesh_from_gmsh(gmsh.model if comm.rank == 0 else None, comm)
+    names, regions = comm.bcast((names, regions), root=0)
+    mesh, cell_tags, facet_tags = dfx.mesh_from_gmsh(gmsh.model if comm.rank == 0 else None, comm)
     if comm.rank == 0:
         gmsh.clear()
-    return Body(mesh, facet_tags, names)
+    return Body(mesh, facet_tags, names, cell_tags, regions)
 
 
 
@@ -325,15 +354,31 @@ def build_bodies(comm, parts):
 
 def build_mesh(comm, mesh, bodies=()):
     """The Body of a scene's [mesh] spec and its [[body]] entries: the one
-    place a builder name becomes a mesh. Several bodies, or a graded box, are
-    built as arrays into one mesh (build_bodies); one body from a file, the
-    shell octant or a box through gmsh."""
+    place a builder name becomes a mesh. A file is read through gmsh, its
+    [[body]] entries physical volumes of it; several built bodies, or a graded
+    box, are built as arrays into one mesh (build_bodies); one body, the
+    shell octant or a box, through gmsh."""
+    if mesh["builder"] == "file":
+        body = read_msh(comm, mesh["file"])
+        for i, b in enumerate(bodies):
+            if b["volume"] not in body.regions:
+                close = difflib.get_close_matches(b["volume"], list(body.regions), n=1)
+                raise SceneError(f"scene key 'body[{i}].volume': mesh file {mesh['file']!r} has no physical "
+                                 f"volume {b['volume']!r} (it has {', '.join(body.regions)})"
+                                 + (f"; did you mean '{close[0]}'?" if close else ""))
+        return body
     if bodies or any(g != 1.0 for g in mesh["grading"]):
         return build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in bodies])
-    if mesh["builder"] == "file":
-        return read_msh(comm, mesh["file"])
     if mesh["builder"] == "shell_octant":
         from .shell import build_shell_octant
 
         return build_shell_octant(comm, mesh["inner_radius"], mesh["thickness"], mesh["n"], mesh["m"])
     return build_box(comm, mesh["size"], mesh["n"], mesh["m"], mesh["origin"], mesh.get("cells", "hexahedra"))
+
+
+def surface_regions(body, tag):
+    """The regions (sorted names) whose cells the facets with ``tag`` bound, on every rank."""
+    cells = dfx.facet_cells(body.mesh, dfx.facets_with_tag(body.facet_tags, tag))
+    tags = set(body.cell_tags.values[np.isin(body.cell_tags.indices, cells)].tolist())
+    tags = set().union(*body.mesh.comm.allgather(tags))
+    return sorted(name for name, t in body.regions.items() if t in tags)

@@ -12,9 +12,10 @@ from hypercontact import geometry
 from reference.homogeneous import nominal_stress
 
 
-def write_stack_msh(path, n=2, m=1, cells="tetrahedra", order=1):
+def write_stack_msh(path, n=2, m=1, cells="tetrahedra", order=1, volumes=("body",)):
     """[0,1]² × [0,½] and [0,1]² × [½,1], n × n × m cells each, to ``path`` (rank 0).
-    Physical surfaces: base, lower_top, upper_bottom, top, xmin, ymin; volume "body"."""
+    Physical surfaces: base, lower_top, upper_bottom, top, xmin, ymin, xmax, ymax; volume "body"
+    (``volumes``: one name, both blocks; two names, the lower and the upper block)."""
     if MPI.COMM_WORLD.rank == 0:
         gmsh = geometry._gmsh()
         gmsh.clear()
@@ -31,7 +32,8 @@ def write_stack_msh(path, n=2, m=1, cells="tetrahedra", order=1):
                 gmsh.model.mesh.setRecombine(2, tag)
         for _, tag in gmsh.model.getEntities(3):
             gmsh.model.mesh.setTransfiniteVolume(tag)
-        names = {"base": [], "lower_top": [], "upper_bottom": [], "top": [], "xmin": [], "ymin": []}
+        names = {"base": [], "lower_top": [], "upper_bottom": [], "top": [], "xmin": [], "ymin": [], "xmax": [],
+                 "ymax": []}
         for vol, box in enumerate(boxes):
             for dim, tag in gmsh.model.getBoundary([(3, box)], oriented=False):
                 b = np.array(gmsh.model.getBoundingBox(2, tag))
@@ -44,11 +46,14 @@ def write_stack_msh(path, n=2, m=1, cells="tetrahedra", order=1):
                     names["xmin"].append(tag)
                 elif hi[1] - lo[1] < 1e-6 and lo[1] < 1e-6:
                     names["ymin"].append(tag)
+                else:
+                    names["xmax" if hi[0] - lo[0] < 1e-6 else "ymax"].append(tag)
         for i, (name, tags) in enumerate(names.items(), start=1):
             gmsh.model.addPhysicalGroup(2, tags, i)
             gmsh.model.setPhysicalName(2, i, name)
-        gmsh.model.addPhysicalGroup(3, boxes, 100)
-        gmsh.model.setPhysicalName(3, 100, "body")
+        for k, (name, tags) in enumerate(zip(volumes, [boxes] if len(volumes) == 1 else [[b] for b in boxes])):
+            gmsh.model.addPhysicalGroup(3, tags, 100 + k)
+            gmsh.model.setPhysicalName(3, 100 + k, name)
         gmsh.option.setNumber("Mesh.ElementOrder", order)
         gmsh.model.mesh.generate(3)
         gmsh.write(str(path))

@@ -44,6 +44,14 @@ def test_the_unedited_scenes_pass_every_rule(name):
 
 
 SURFACE_FRICTION = {"contact.0.mu": 0.3}
+
+
+def volume_body(name, volume):
+    """A [[body]] of a physical volume of the mesh file (None: no volume key)."""
+    body = {"name": name, "material": SCENES["blocks"]["body"][0]["material"]}
+    return body if volume is None else {**body, "volume": volume}
+
+
 RULES = [
     # friction against a deformable surface: single pass, nodal integration
     ("blocks", {**SURFACE_FRICTION, "contact.0.passes": 2}, "contact[0].mu", "needs passes = 1"),
@@ -61,8 +69,19 @@ RULES = [
     ("sphere", {"material.parameters.K": float("inf")}, "material.parameters.K", "K = inf (incompressible) needs"),
     ("sphere_incompressible", {"discretisation.quadrature_degree": 3}, "discretisation.quadrature_degree",
      "degree >= 4"),
-    # several bodies: one built mesh, no pressure unknown, names that tell the surfaces apart
-    ("blocks", {"mesh.builder": "file", "mesh.file": __file__}, "body", "several bodies need a built-in"),
+    # several bodies: one built mesh or the physical volumes of one file (each claimed once), no pressure
+    # unknown, names that tell the surfaces apart
+    ("blocks", {"mesh.builder": "file", "mesh.file": __file__, "body": [volume_body("top", None)]},
+     "body[0].volume", "with mesh.builder = \"file\" a [[body]] is one of the file's physical volumes"),
+    ("blocks", {"body": [volume_body("top", "housing")]}, "body[0].volume",
+     "a physical volume of a mesh file, but mesh.builder is 'box', not \"file\""),
+    ("blocks", {"mesh.builder": "file", "mesh.file": __file__, "body.0.volume": "housing"}, "body[0].builder",
+     "given, but the body is a physical volume of the mesh file (volume = 'housing')"),
+    ("blocks", {"mesh.builder": "file", "mesh.file": __file__,
+                "body": [volume_body("seal", "housing"), volume_body("ring", "housing")]},
+     "body[1].volume", "volume 'housing' is claimed by body[0] too"),
+    ("blocks", {"mesh.builder": "file", "mesh.file": __file__, "body": [volume_body("top", "")]},
+     "body[0].volume", "expected the name of a physical volume"),
     ("blocks", {"discretisation.formulation": "mixed", "discretisation.quadrature_degree": 4},
      "discretisation.formulation", "several bodies need"),
     ("blocks", {"body": [SCENES["blocks"]["body"][0]] * 2}, "body[1].name", "duplicate body name 'top'"),

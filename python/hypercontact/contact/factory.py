@@ -30,10 +30,12 @@ class ContactSettings:
     penalty_note: str | None
 
 
-def _penalty(entry, slave_tag, material, V, facet_tags):
-    """(ε_N, note): the scene's ε_N, or penalty_factor × M / h when it is 0 (penalty.py)."""
+def _penalty(entry, slave_tag, material_of, V, facet_tags):
+    """(ε_N, note): the scene's ε_N, or penalty_factor × M / h when it is 0 (penalty.py)
+    with the material ``material_of(slave surface)``."""
     if entry["eps_n"] != 0:
         return float(entry["eps_n"]), None
+    material = material_of(entry["surface"])
     eps, M, h = penalty.automatic_penalty(entry["penalty_factor"], material["law"], material["parameters"],
                                           V, facet_tags, slave_tag)
     return eps, f"{entry['name']}: ε_N = {eps:.4g} = {entry['penalty_factor']:g} × M {M:.4g} / h {h:.4g}"
@@ -80,7 +82,7 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path,
     contacts, settings = [], []
     for i, entry in enumerate(scene["contact"]):
         slave = tag_of(entry["surface"], f"contact[{i}].surface")
-        eps_n, note = _penalty(entry, slave, material_of(entry["surface"]), V, facet_tags)
+        eps_n, note = _penalty(entry, slave, material_of, V, facet_tags)
         if entry["obstacle"] != "surface":
             pairs = [(entry["name"], [slave], None)]
         else:

@@ -14,6 +14,7 @@ from ..solve.newton import Problem
 from .effects import describe_effects
 from .inversion import InversionCheck
 from .loading import Constraints, Loads
+from .material import body_materials
 from .probes import Probe
 from .volume import build_volume
 
@@ -85,7 +86,14 @@ class Model:
         return self.body.surfaces[surface]
 
     def material_of(self, surface):
-        """The material entry of the body a surface ('<body>.<surface>' or the [mesh] body's) belongs to."""
+        """The material entry of the body a surface ('<body>.<surface>' or the [mesh] body's; of a mesh
+        file: the physical volume its facets bound) belongs to."""
+        if self.scene["mesh"]["builder"] == "file" and self.scene["body"]:
+            regions = geometry.surface_regions(self.body, self.tag(surface, "contact.surface"))
+            if len(regions) != 1:
+                raise SceneError(f"surface {surface!r} bounds the physical volumes {', '.join(regions) or 'none'}: "
+                                 "the automatic penalty (eps_n = 0) takes the modulus of one body; give eps_n")
+            return body_materials(self.scene).get(regions[0], self.scene["material"])
         prefix = surface.split(".")[0] if "." in surface else None
         return next((b["material"] for b in self.scene["body"] if b["name"] == prefix), self.scene["material"])
 

@@ -61,3 +61,10 @@ def resolve_material(mat, law=None):
     except Exception as err:
         raise SceneError(f"material law '{name}' with parameters {params} raised: {err}") from None
     return law, params, desc
+
+
+def body_materials(scene):
+    """Region name → material entry of each [[body]]: a region of a mesh file
+    is the physical volume a body claims (its ``volume``), a built body's
+    region is its name. The scene's [material] is that of every other region."""
+    return {b["volume"] or b["name"]: b["material"] for b in scene["body"]}

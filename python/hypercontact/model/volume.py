@@ -9,7 +9,7 @@ from .. import _dolfinx as dfx
 from ..forms import materials, volume
 from ..results import first_piola_stress
 from ..scene import SceneError
-from .material import resolve_material
+from .material import body_materials, resolve_material
 
 
 @dataclass
@@ -72,14 +72,20 @@ def _mixed(body, name, params, desc, qdeg):
 
 
 def _several_bodies(scene, body, u, law, psi, params, desc):
-    """Volume forms summed over the bodies, each with its own law on its own
-    cells; the stress for the results picked per cell by body."""
+    """Volume forms summed over the regions (bodies), each with its own law on
+    its own cells; the stress for the results picked per cell by region. A
+    region's law is its [[body]]'s (the body of that name, or of that volume of
+    a mesh file), else the scene's [material]."""
     disc = scene["discretisation"]
     dx = ufl.Measure("dx", domain=body.mesh, subdomain_data=body.cell_tags)
-    laws = [(psi, params, scene["material"]["law"], desc)]
-    for b in scene["body"]:
-        b_psi, b_params, b_desc = resolve_material(b["material"])
-        laws.append((b_psi, b_params, b["material"]["law"], b_desc))
+    own = body_materials(scene)
+    laws = []
+    for region in body.regions:
+        if region in own:
+            b_psi, b_params, b_desc = resolve_material(own[region])
+            laws.append((b_psi, b_params, own[region]["law"], b_desc))
+        else:
+            laws.append((psi, params, scene["material"]["law"], desc))
     R = J = None
     stresses = []
     DG0 = dfx.fem.FunctionSpace(body.mesh, ("DG", 0))
@@ -100,7 +106,10 @@ def _several_bodies(scene, body, u, law, psi, params, desc):
     def stress(u_out):
         return sum(chi * P(u_out) for chi, P in stresses)
 
-    text = "; ".join(f"{region}: {d}" for (_, _, _, d), region in zip(laws, body.regions))
+    def numbers(p):
+        return ", ".join(f"{k} = {v:g}" for k, v in p.items() if isinstance(v, (int, float)))
+
+    text = "; ".join(f"{region}: {d} [{numbers(p)}]" for (_, p, _, d), region in zip(laws, body.regions))
     if disc["formulation"] == "sri":
         text += ", selective reduced integration"
     return R, J, f"{len(laws)} bodies ({text})", stress

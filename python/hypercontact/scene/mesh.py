@@ -1,12 +1,13 @@
 """[mesh] (the main body) and [[body]] (further bodies, each with its own
-material): a built-in builder and its keys, or a mesh file."""
+material): a built-in builder and its keys, or a mesh file (then each
+[[body]] is one of its physical volumes)."""
 import re
 
 from pydantic import root_validator, validator
 
 from .base import SceneModel
 from .builders import BODY_BUILDERS, CELL_KINDS, MESH_BUILDERS, check_shape, choices
-from .errors import Invalid
+from .errors import Invalid, printable
 from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, integer,
                      number, one_of, string, vector)
 from .material import Material
@@ -59,7 +60,18 @@ class Body(SceneModel):
     thickness: number(POSITIVE, LENGTH) = 1.0
     radius: number(POSITIVE, LENGTH) = 1.0
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    #: a physical volume of the [mesh] file: the body is its cells (no builder keys)
+    volume: string((lambda x: x != "", "the name of a physical volume")) = ""
     material: Material
+
+    @root_validator(pre=True)
+    def volume_or_builder(cls, values):
+        if "volume" in values:
+            for key in values:
+                if key not in ("name", "volume", "material"):
+                    raise Invalid("given, but the body is a physical volume of the mesh file (volume = "
+                                  f"{printable(repr(values['volume']), 60)}): its cells are the file's", key)
+        return values
 
     @validator("name")
     def not_the_main_body(cls, name):

@@ -18,11 +18,24 @@ from ..forms.registry import LAWS
 from .path import LoadPath, check_no_jumps
 
 
-def several_bodies_need_one_built_mesh(s):
-    """[[body]] entries are built into one mesh with the [mesh] body: no
-    mesh file, and a formulation without a pressure unknown."""
-    if s.body and s.mesh.builder == "file":
-        raise Invalid('several bodies need a built-in mesh.builder ("box" or "shell_octant"), found "file"', "body")
+def several_bodies_share_one_mesh(s):
+    """[[body]] entries are built into one mesh with the [mesh] body, or are
+    physical volumes of its mesh file (each claimed once); a formulation
+    without a pressure unknown."""
+    claimed = {}
+    for i, b in enumerate(s.body):
+        if s.mesh.builder == "file" and not b.volume:
+            raise Invalid('missing: with mesh.builder = "file" a [[body]] is one of the file\'s physical volumes '
+                          '(volume = "<its name>"); built bodies need a built-in mesh.builder ("box" or '
+                          '"shell_octant")', ("body", i, "volume"))
+        if s.mesh.builder != "file" and b.volume:
+            raise Invalid(f'a physical volume of a mesh file, but mesh.builder is {s.mesh.builder!r}, not "file"',
+                          ("body", i, "volume"))
+        if b.volume in claimed:
+            raise Invalid(f"volume {b.volume!r} is claimed by body[{claimed[b.volume]}] too: one body per physical "
+                          "volume", ("body", i, "volume"))
+        if b.volume:
+            claimed[b.volume] = i
     if s.body and s.mesh.cells != "hexahedra":
         raise Invalid(f'several bodies are built of hexahedra: mesh.cells = "tetrahedra" needs a single body',
                       ("mesh", "cells"))
@@ -115,7 +128,10 @@ def pressures_do_work(s):
 
 
 def _material_of_surface(s, surface):
-    """(material, its key) of the body a surface belongs to."""
+    """(material, its key) of the body a surface belongs to; None for a mesh
+    file of several bodies (known once it is read)."""
+    if s.mesh.builder == "file" and s.body:
+        return None, None
     prefix = surface.split(".")[0] if "." in surface else None
     for body in s.body:
         if body.name == prefix:
@@ -127,7 +143,7 @@ def automatic_penalty_needs_builtin_law(s):
     """ε_N = 0 takes the slave body's small-strain modulus."""
     for i, c in enumerate(s.contact):
         material, key = _material_of_surface(s, c.surface)
-        if c.eps_n == 0 and not material.builtin:
+        if c.eps_n == 0 and material is not None and not material.builtin:
             raise Invalid(f"0 (automatic penalty) needs the slave body's small-strain modulus, but its law "
                           f"({describe(material.law)}, {key}) is not built in: give eps_n", ("contact", i, "eps_n"))
 
@@ -350,7 +366,7 @@ def phase_curves_do_not_jump(s):
     check_no_jumps(LoadPath(data))
 
 
-RULES = (several_bodies_need_one_built_mesh, split_formulations_need_builtin_laws, incompressible_needs_mixed,
+RULES = (several_bodies_share_one_mesh, split_formulations_need_builtin_laws, incompressible_needs_mixed,
          surfaces_exist, pressures_do_work,
          automatic_penalty_needs_builtin_law, probes_in_body, loads_have_values, phases_name_what_exists,
          phases_have_valid_settings, phase_curves_do_not_jump, continuation_needs_a_stop_probe_and_a_load,
