@@ -80,8 +80,6 @@ RULES = [
     ("blocks", {"mesh.builder": "file", "mesh.file": __file__,
                 "body": [volume_body("seal", "housing"), volume_body("ring", "housing")]},
      "body[1].volume", "volume 'housing' is claimed by body[0] too"),
-    ("blocks", {"mesh.builder": "file", "mesh.file": __file__, "body": [volume_body("top", "")]},
-     "body[0].volume", "expected the name of a physical volume"),
     ("blocks", {"discretisation.formulation": "mixed", "discretisation.quadrature_degree": 4},
      "discretisation.formulation", "several bodies need"),
     ("blocks", {"body": [SCENES["blocks"]["body"][0]] * 2}, "body[1].name", "duplicate body name 'top'"),

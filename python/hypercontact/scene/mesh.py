@@ -60,13 +60,13 @@ class Body(SceneModel):
     thickness: number(POSITIVE, LENGTH) = 1.0
     radius: number(POSITIVE, LENGTH) = 1.0
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
-    #: a physical volume of the [mesh] file: the body is its cells (no builder keys)
-    volume: string((lambda x: x != "", "the name of a physical volume")) = ""
+    #: a physical volume of the [mesh] file: the body is its cells (no builder keys); "": none
+    volume: string() = ""
     material: Material
 
     @root_validator(pre=True)
     def volume_or_builder(cls, values):
-        if "volume" in values:
+        if values.get("volume", "") != "":  # "" (a loaded scene written back): a built body
             for key in values:
                 if key not in ("name", "volume", "material"):
                     raise Invalid("given, but the body is a physical volume of the mesh file (volume = "
