@@ -367,13 +367,25 @@ class XDMFWriter:
         self._file.close()
 
 
-def mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values):
-    """A hexahedral mesh from arrays on rank 0 (gmsh node order; other ranks
-    pass empty arrays): (mesh, cell_tags, facet_tags). What
-    gmshio.model_to_mesh does, for meshes merged from several bodies."""
-    ufl_domain = gmshio.ufl_mesh(5, 3)  # gmsh type 5: 8-node hexahedron
-    cells = np.asarray(hexes, dtype=np.int64).reshape(-1, 8)
-    cells = cells[:, gmshio.cell_perm_array(dolfinx.mesh.CellType.hexahedron, 8)]
+#: Linear cells by their number of vertices: (gmsh element type, dolfinx cell type, its facets' type
+#: and number of vertices).
+_LINEAR_CELLS = {8: (5, dolfinx.mesh.CellType.hexahedron, dolfinx.mesh.CellType.quadrilateral, 4),
+                 4: (4, dolfinx.mesh.CellType.tetrahedron, dolfinx.mesh.CellType.triangle, 3)}
+
+
+def mesh_from_arrays(comm, x, cells, cell_values, facets, facet_values):
+    """A mesh of 8-node hexahedra (cells (c, 8), facets quadrilaterals (f, 4))
+    or 4-node tetrahedra (cells (c, 4), facets triangles (f, 3)) from arrays on
+    rank 0 (gmsh node order; other ranks pass empty arrays of the same widths):
+    (mesh, cell_tags, facet_tags). What gmshio.model_to_mesh does, for meshes
+    built as arrays (merged bodies, graded boxes)."""
+    corners = np.shape(cells)[1]
+    if corners not in _LINEAR_CELLS:
+        raise ValueError(f"mesh_from_arrays: cells of 8 (hexahedra) or 4 (tetrahedra) nodes, found {corners}")
+    gmsh_type, cell_type, facet_cell_type, per_facet = _LINEAR_CELLS[corners]
+    ufl_domain = gmshio.ufl_mesh(gmsh_type, 3)
+    cells = np.asarray(cells, dtype=np.int64).reshape(-1, corners)
+    cells = cells[:, gmshio.cell_perm_array(cell_type, corners)]
     x = np.asarray(x, dtype=np.float64).reshape(-1, 3)
     mesh = gmshio.create_mesh(comm, cells, x, ufl_domain)
     tdim = mesh.topology.dim
@@ -382,10 +394,10 @@ def mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values):
     mesh.topology.create_connectivity(tdim, 0)
     cell_tags = dolfinx.mesh.meshtags_from_entities(
         mesh, tdim, dolfinx.cpp.graph.AdjacencyList_int32(entities), values.astype(np.int32))
-    facets = np.asarray(quads, dtype=np.int64).reshape(-1, 4)
-    facets = facets[:, gmshio.cell_perm_array(dolfinx.mesh.CellType.quadrilateral, 4)]
+    facets = np.asarray(facets, dtype=np.int64).reshape(-1, per_facet)
+    facets = facets[:, gmshio.cell_perm_array(facet_cell_type, per_facet)]
     entities, values = dolfinx.cpp.io.distribute_entity_data(
-        mesh._mesh, tdim - 1, facets, np.asarray(quad_values, dtype=np.int32))
+        mesh._mesh, tdim - 1, facets, np.asarray(facet_values, dtype=np.int32))
     mesh.topology.create_connectivity(tdim - 1, tdim)
     facet_tags = dolfinx.mesh.meshtags_from_entities(
         mesh, tdim - 1, dolfinx.cpp.graph.AdjacencyList_int32(entities), values.astype(np.int32))

@@ -285,12 +285,41 @@ def graded_box_arrays(size, n, m, origin, grading):
     return x, hexes, ["body"] * len(hexes), np.concatenate(quads), names
 
 
+#: The six tetrahedra of a hexahedron (gmsh node order) around its main diagonal 0–6 (Kuhn's split):
+#: the paths 0 → 6 along the edges, one per order of the axes, odd orders reversed to positive volume.
+KUHN_TETRAHEDRA = np.array([[0, 1, 2, 6], [0, 5, 1, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 4, 5, 6], [0, 7, 4, 6]])
+#: The two triangles of a boundary quadrilateral along its diagonal 0–2, the one Kuhn's split takes.
+KUHN_TRIANGLES = np.array([[0, 1, 2], [0, 2, 3]])
+
+
+def kuhn_tetrahedra(hexes, quads):
+    """(tetrahedra (6 h, 4), triangles (2 q, 3)): each hexahedron split into
+    six tetrahedra around its diagonal from node 0 to node 6, each boundary
+    quadrilateral into the two triangles along its diagonal from node 0 to
+    node 2. Conforming on a structured grid whose cells and boundary faces
+    are numbered alike (node 0 the corner of lowest i, j, k, node 6 of the
+    highest, as graded_box_arrays makes them): every face is cut along its
+    diagonal from the lowest to the highest corner, the same seen from either
+    cell. The cells and faces of the split keep their parent's order (cell c
+    gives 6c … 6c + 5), so a parent's tag repeats (np.repeat)."""
+    tets = np.asarray(hexes)[:, KUHN_TETRAHEDRA].reshape(-1, 4)
+    triangles = np.asarray(quads)[:, KUHN_TRIANGLES].reshape(-1, 3)
+    return tets, triangles
+
+
 def _builder_arrays(spec):
-    """(x, hexes, hex names, quads, quad names) of one body's mesh spec
-    (the keys of a scene's [mesh] or [[body]] entry)."""
+    """(x, cells, cell names, facets, facet names) of one body's mesh spec
+    (the keys of a scene's [mesh] or [[body]] entry): hexahedra and
+    quadrilaterals, or (a graded box of cells = "tetrahedra") tetrahedra and
+    triangles."""
     grading = spec.get("grading", (1.0, 1.0, 1.0))
     if spec["builder"] == "box" and any(g != 1.0 for g in grading):
-        return graded_box_arrays(spec["size"], spec["n"], spec["m"], spec["origin"], grading)
+        x, hexes, hex_names, quads, quad_names = graded_box_arrays(spec["size"], spec["n"], spec["m"],
+                                                                   spec["origin"], grading)
+        if spec.get("cells", "hexahedra") == "hexahedra":
+            return x, hexes, hex_names, quads, quad_names
+        tets, triangles = kuhn_tetrahedra(hexes, quads)
+        return x, tets, list(np.repeat(hex_names, 6)), triangles, list(np.repeat(quad_names, 2))
     if spec["builder"] == "hemisphere":
         if min(grading) < 1.0:
             raise ValueError(f"hemisphere: grading must be >= 1 (towards the pole), found {grading}")
@@ -320,35 +349,37 @@ def build_bodies(comm, parts):
     """Several bodies in one mesh, sharing no node: ``parts`` is a list of
     (name, mesh spec); the first body's surfaces keep their plain names
     (xmin, zmax, ...), the others' are prefixed "NAME." (punch.zmin). Cells
-    are tagged by body (regions: name → tag, 1, 2, ...)."""
-    error, surfaces, regions = None, None, None
-    x = hexes = cell_values = quads = quad_values = None
+    are tagged by body (regions: name → tag, 1, 2, ...). One body may be a
+    graded box of tetrahedra; several bodies are hexahedra."""
+    error, surfaces, regions, widths = None, None, None, None
+    x = cells = cell_values = facets = facet_values = None
     if comm.rank == 0:
         try:
-            xs, hs, cvs, qs, qvs, surfaces = [], [], [], [], [], {}
+            xs, cs, cvs, fs, fvs, surfaces = [], [], [], [], [], {}
             offset = 0
             for k, (name, spec) in enumerate(parts):
-                xb, hb, _, qb, qnames = _builder_arrays(spec)
+                xb, cb, _, fb, fnames = _builder_arrays(spec)
                 prefix = "" if k == 0 else f"{name}."
-                for qn in qnames:
-                    surfaces.setdefault(prefix + qn, len(surfaces) + 1)
+                for fn in fnames:
+                    surfaces.setdefault(prefix + fn, len(surfaces) + 1)
                 xs.append(xb)
-                hs.append(hb + offset)
-                qs.append(qb + offset)
-                cvs.append(np.full(len(hb), k + 1, dtype=np.int32))
-                qvs.append(np.array([surfaces[prefix + qn] for qn in qnames], dtype=np.int32))
+                cs.append(cb + offset)
+                fs.append(fb + offset)
+                cvs.append(np.full(len(cb), k + 1, dtype=np.int32))
+                fvs.append(np.array([surfaces[prefix + fn] for fn in fnames], dtype=np.int32))
                 offset += len(xb)
-            x, hexes, cell_values = np.concatenate(xs), np.concatenate(hs), np.concatenate(cvs)
-            quads, quad_values = np.concatenate(qs), np.concatenate(qvs)
+            x, cells, cell_values = np.concatenate(xs), np.concatenate(cs), np.concatenate(cvs)
+            facets, facet_values = np.concatenate(fs), np.concatenate(fvs)
             regions = {name: k + 1 for k, (name, _) in enumerate(parts)}
+            widths = cells.shape[1], facets.shape[1]
         except Exception as err:
             error = err
     _raise_everywhere(comm, error)
-    surfaces, regions = comm.bcast((surfaces, regions), root=0)
+    surfaces, regions, widths = comm.bcast((surfaces, regions, widths), root=0)
     if comm.rank != 0:
-        x, hexes, cell_values = np.zeros((0, 3)), np.zeros((0, 8), dtype=np.int64), np.zeros(0, dtype=np.int32)
-        quads, quad_values = np.zeros((0, 4), dtype=np.int64), np.zeros(0, dtype=np.int32)
-    mesh, cell_tags, facet_tags = dfx.mesh_from_arrays(comm, x, hexes, cell_values, quads, quad_values)
+        x, cells, cell_values = np.zeros((0, 3)), np.zeros((0, widths[0]), dtype=np.int64), np.zeros(0, np.int32)
+        facets, facet_values = np.zeros((0, widths[1]), dtype=np.int64), np.zeros(0, dtype=np.int32)
+    mesh, cell_tags, facet_tags = dfx.mesh_from_arrays(comm, x, cells, cell_values, facets, facet_values)
     return Body(mesh, facet_tags, surfaces, cell_tags, regions)
 
 

@@ -61,8 +61,6 @@ RULES = [
     ("blocks", {"contact.0.master": "zmax+xmax", "contact.0.passes": 2}, "contact[0].passes",
      "single master surface"),
     ("blocks", {"contact.0.master": ""}, "contact[0].master", "needs the master surface's name"),
-    ("punch", {"mesh.cells": "tetrahedra", "mesh.grading": [2.0, 1.0, 1.0]}, "mesh.cells",
-     "a graded box is built of hexahedra only"),
     ("sphere", {"mesh.cells": "tetrahedra"}, "mesh.cells", "applies to the box builder"),
     ("blocks", {"mesh.cells": "tetrahedra"}, "mesh.cells", "several bodies are built of hexahedra"),
     # the incompressible limit and the mixed formulation
@@ -139,6 +137,7 @@ def test_rules_accept_what_they_allow():
     scene.load(edited("punch", {"discretisation.degree": 2, "discretisation.quadrature_degree": 4}))
     scene.load(edited("punch", {"discretisation.formulation": "mixed", "discretisation.quadrature_degree": 4,
                                 "mesh.cells": "tetrahedra"}))
+    scene.load(edited("punch", {"mesh.cells": "tetrahedra", "mesh.grading": [2.0, 1.0, 1.0]}))  # graded tetrahedra
     scene.load(edited("punch", {"output.probes.edge": [40.0, 0.0, 10.0]}))  # on the surface
     scene.load(edited("blocks", {"bc": SCENES["blocks"]["bc"] + [{"surface": "top.zmax", "fix": ["x"]}]}))
     scene.load(edited("sphere_incompressible", {"discretisation.quadrature_degree": 4}))

@@ -63,12 +63,8 @@ def check_shape(spec):
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
         raise Invalid(f"grading applies to the {' and '.join(n for n, b in BUILDERS.items() if b.graded)} "
                       f"builders, not {builder.name!r}", "grading")
-    if spec.get("cells", "hexahedra") != "hexahedra":
-        if builder.name != "box":
-            raise Invalid(f"cells = {spec['cells']!r} applies to the box builder, not {builder.name!r}", "cells")
-        if spec["grading"] != [1.0, 1.0, 1.0]:
-            raise Invalid("a graded box is built of hexahedra only: cells = \"tetrahedra\" needs grading = "
-                          "[1, 1, 1]", "cells")
+    if spec.get("cells", "hexahedra") != "hexahedra" and builder.name != "box":
+        raise Invalid(f"cells = {spec['cells']!r} applies to the box builder, not {builder.name!r}", "cells")
     {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere}[builder.name](spec)
     cells = builder.cells(spec)
     if cells > MAX_CELLS:

@@ -1,0 +1,77 @@
+"""A graded box of tetrahedra (mesh.cells = "tetrahedra" with a grading):
+each graded hexahedron split into six tetrahedra around its main diagonal,
+each boundary quadrilateral into the two triangles that match
+(geometry.kuhn_tetrahedra). Checked against the box itself: every tetrahedron
+has positive volume and together they have the box's volume (an overlap or a
+gap would change the sum of the positive volumes); the split conforms (a face
+cut along different diagonals from its two sides would leave interior
+triangles without a neighbour: more exterior facets than the boundary's);
+each named surface has its plane's area; the hexahedral graded box of the
+same keys has the same volume and surfaces."""
+import numpy as np
+import pytest
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from hypercontact import _dolfinx as dfx
+from hypercontact.geometry import build_mesh, graded_box_arrays, kuhn_tetrahedra
+from hypercontact.scene.mesh import Mesh
+
+SIZE, ORIGIN, N, M = [2.0, 3.0, 1.5], [0.5, -1.0, -1.5], 3, 2
+GRADING = [3.0, 1.0, -2.0]  # clustered towards xmin, uniform along y, towards zmax
+AREAS = {"xmin": SIZE[1] * SIZE[2], "xmax": SIZE[1] * SIZE[2], "ymin": SIZE[0] * SIZE[2],
+         "ymax": SIZE[0] * SIZE[2], "zmin": SIZE[0] * SIZE[1], "zmax": SIZE[0] * SIZE[1]}
+
+
+def signed_volumes(x, tets):
+    P = np.asarray(x)[tets]
+    return np.einsum("ij,ij->i", P[:, 1] - P[:, 0], np.cross(P[:, 2] - P[:, 0], P[:, 3] - P[:, 0])) / 6.0
+
+
+def test_the_split_of_the_graded_grid_has_positive_tetrahedra_filling_the_box():
+    x, hexes, _, quads, _ = graded_box_arrays(SIZE, N, M, ORIGIN, GRADING)
+    tets, triangles = kuhn_tetrahedra(hexes, quads)
+    assert tets.shape == (6 * N * N * M, 4) and triangles.shape == (2 * len(quads), 3)
+    v = signed_volumes(x, tets)
+    assert v.min() > 0.0
+    assert v.sum() == pytest.approx(np.prod(SIZE), rel=1e-12)
+    # each quadrilateral's two triangles have its area and face outwards alike (one normal per quadrilateral)
+    P = x[triangles]
+    normals = np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]).reshape(-1, 2, 3)
+    assert np.allclose(normals[:, 0] / np.linalg.norm(normals[:, 0], axis=1)[:, None],
+                       normals[:, 1] / np.linalg.norm(normals[:, 1], axis=1)[:, None])
+
+
+def mesh_of(cells):
+    spec = Mesh(builder="box", size=SIZE, origin=ORIGIN, n=N, m=M, grading=GRADING, cells=cells)
+    return build_mesh(MPI.COMM_WORLD, spec.dict())
+
+
+def integral(body, measure):
+    return dfx.assemble_scalar(fem.form(fem.Constant(body.mesh, 1.0) * measure), body.mesh.comm)
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("cells", ["tetrahedra", "hexahedra"])
+def test_graded_box_volume_surfaces_and_conformity(cells):
+    body = mesh_of(cells)
+    mesh = body.mesh
+    assert mesh.topology.cell_type.name == ("tetrahedron" if cells == "tetrahedra" else "hexahedron")
+    per_hex = 6 if cells == "tetrahedra" else 1
+    assert mesh.topology.index_map(3).size_global == per_hex * N * N * M
+    assert integral(body, ufl.dx(domain=mesh)) == pytest.approx(np.prod(SIZE), rel=1e-12)
+    # conforming: the exterior facets are exactly the boundary's (2 triangles per boundary quadrilateral)
+    mesh.topology.create_connectivity(2, 3)
+    exterior = dfx.owned_exterior_facets(mesh)[0]
+    per_quad = 2 if cells == "tetrahedra" else 1
+    assert mesh.comm.allreduce(len(exterior), op=MPI.SUM) == per_quad * (2 * N * N + 4 * N * M)
+    assert set(body.surfaces) == set(AREAS)
+    ds = ufl.Measure("ds", domain=mesh, subdomain_data=body.facet_tags)
+    for name, area in AREAS.items():
+        assert integral(body, ds(body.surfaces[name])) == pytest.approx(area, rel=1e-12), name
+    assert integral(body, ufl.ds(domain=mesh)) == pytest.approx(sum(AREAS.values()), rel=1e-12)
+    # graded: the cells at the xmin side are thinner than those at xmax (t³ spacing)
+    x = mesh.geometry.x
+    assert mesh.comm.allreduce(float(np.min(np.where(x[:, 0] > ORIGIN[0], x[:, 0], np.inf)) - ORIGIN[0])
+                               if len(x) else np.inf, op=MPI.MIN) == pytest.approx(SIZE[0] / N ** 3)
