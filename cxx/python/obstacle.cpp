@@ -63,24 +63,26 @@ void declare_obstacle(py::module_& m) {
       });
 
   py::class_<RigidCylinder>(m, "RigidCylinder",
-                            "Rigid circular cylinder (infinite length); outside is admissible")
-      .def(py::init([](const RealArray& point, const RealArray& axis, double radius) {
+                            "Rigid circular cylinder (infinite length); outside is admissible, or "
+                            "inside with inside=True (a bore)")
+      .def(py::init([](const RealArray& point, const RealArray& axis, double radius, bool inside) {
              const Eigen::Vector3d a = as_vector3(axis, "axis");
              if (!(a.norm() > 0) || !a.allFinite())
                throw py::value_error("axis: must be a finite non-zero vector");
              if (!(std::isfinite(radius) && radius > 0))
                throw py::value_error("radius: must be finite and > 0");
-             return RigidCylinder{as_vector3(point, "point"), a.normalized(), radius};
+             return RigidCylinder{as_vector3(point, "point"), a.normalized(), radius, inside};
            }),
-           py::arg("point"), py::arg("axis"), py::arg("radius"),
-           "RigidCylinder(point, axis, radius); axis is normalised")
+           py::arg("point"), py::arg("axis"), py::arg("radius"), py::arg("inside") = false,
+           "RigidCylinder(point, axis, radius, inside=False); axis is normalised")
       .def_readonly("point", &RigidCylinder::point)
       .def_readonly("axis", &RigidCylinder::axis)
       .def_readonly("radius", &RigidCylinder::radius)
+      .def_readonly("inside", &RigidCylinder::inside)
       .def("__repr__", [](const RigidCylinder& c) {
-        return py::str("RigidCylinder(point={}, axis={}, radius={})")
+        return py::str("RigidCylinder(point={}, axis={}, radius={}, inside={})")
             .format(py::cast(c.point).attr("tolist")(), py::cast(c.axis).attr("tolist")(),
-                    c.radius);
+                    c.radius, c.inside);
       });
 
   py::class_<RigidSphere>(m, "RigidSphere", "Rigid ball; outside is admissible")

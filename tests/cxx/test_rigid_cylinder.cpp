@@ -1,6 +1,7 @@
 // Rigid cylinder: signed distance against a brute-force reference, normal and its derivative
 // against finite differences, and the normal-penalty and friction tangents on it (the curved
-// obstacle's ∂n/∂x terms) against central differences, inside and on both sides of the axis.
+// obstacle's ∂n/∂x terms) against central differences, inside and on both sides of the axis;
+// the same for a bore (inside = true: the admissible region within the cylinder).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -20,6 +21,7 @@ using test::fd_jacobian;
 using test::relative_error;
 
 const RigidCylinder die{{2.5, 0.3, 6.0}, Eigen::Vector3d(0.1, 1.0, -0.2).normalized(), 3.0};
+const RigidCylinder bore{die.point, die.axis, die.radius, true};
 
 /// Distance from x to the cylinder's surface by brute force: the minimum over a fine sampling
 /// of the circle through x's axial station, refined by golden-section search (no formulas
@@ -127,6 +129,70 @@ TEST(RigidCylinder, FrictionTangentExactInStickAndSlip) {
     const FrictionResult f = coulomb_friction(p, x, xi_old, t_old, area, eps_n, eps_t, mu);
     ASSERT_EQ(f.state, expected);
     EXPECT_LE(relative_error(fd_jacobian(residual, x), f.tangent), 1e-6);
+  }
+}
+
+// --- a bore: the body inside the cylinder ----------------------------------------------------
+
+TEST(RigidCylinderBore, GapIsTheDistanceToTheWallPositiveInside) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-6.0, 6.0);
+  int admissible = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d x = die.point + Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const ObstacleProjection p = project_to_cylinder(bore, x);
+    ASSERT_NEAR(std::abs(p.gap), reference_distance(bore, x), 1e-9) << "x = " << x.transpose();
+    const double axial_offset = ((x - die.point) - (x - die.point).dot(die.axis) * die.axis).norm();
+    ASSERT_EQ(p.gap > 0, axial_offset < die.radius);  // admissible within the wall
+    ASSERT_NEAR(reference_distance(bore, x - p.gap * p.normal), 0.0, 1e-9);  // x − g n on the wall
+    admissible += p.gap > 0;
+  }
+  EXPECT_GT(admissible, 20);
+  EXPECT_LT(admissible, 180);
+}
+
+TEST(RigidCylinderBore, NormalIsGradientOfGapAndItsDerivativeExact) {
+  const auto gap = [](const Eigen::Vector3d& y) { return project_to_cylinder(bore, y).gap; };
+  const auto normal = [](const Eigen::Vector3d& y) { return project_to_cylinder(bore, y).normal; };
+  for (const Eigen::Vector3d& x :
+       {Eigen::Vector3d(2.6, 1.0, 2.9), Eigen::Vector3d(5.4, -0.4, 5.0),
+        Eigen::Vector3d(1.0, 0.5, 7.0), Eigen::Vector3d(0.2, 0.0, 8.4)}) {
+    const ObstacleProjection p = project_to_cylinder(bore, x);
+    EXPECT_LE(relative_error(fd_gradient(gap, x), p.normal), 1e-8) << x.transpose();
+    EXPECT_LE(relative_error(fd_jacobian(normal, x), p.dnormal_dx), 1e-6) << x.transpose();
+    EXPECT_NEAR(p.gap, -project_to_cylinder(die, x).gap, 1e-14);  // the die's surface seen from within
+  }
+  const ObstacleProjection axis = project_to_cylinder(bore, bore.point + 2.0 * bore.axis);
+  EXPECT_NEAR(axis.gap, bore.radius, 1e-14);  // the axis: farthest from the wall, finite
+  EXPECT_TRUE(axis.normal.allFinite() && axis.dnormal_dx.allFinite());
+}
+
+TEST(RigidCylinderBore, PenaltyAndFrictionTangentsExactBeyondTheWall) {
+  // a point beyond the wall (penetrating), radially outward from the axis
+  const Eigen::Vector3d radial = die.axis.unitOrthogonal();
+  const Eigen::Vector3d x = bore.point + 1.5 * bore.axis + (bore.radius + 0.04) * radial;
+  const ObstacleProjection p = project(Obstacle{bore}, x);
+  ASSERT_NEAR(p.gap, -0.04, 1e-12);
+  ASSERT_NEAR(p.normal.dot(radial), -1.0, 1e-12);  // pointing back in, towards the axis
+  const auto residual = [](const Eigen::Vector3d& y) {
+    return normal_penalty(project(Obstacle{bore}, y), area, eps_n).residual;
+  };
+  const NodalContact c = normal_penalty(p, area, eps_n);
+  ASSERT_TRUE(c.closed);
+  EXPECT_LE(relative_error(fd_jacobian(residual, x), c.tangent), 1e-6);
+  const Eigen::Vector3d t_old(0.3, -0.2, 0.5);
+  const Eigen::Vector3d along = bore.axis.cross(p.normal);
+  for (const auto& [offset, expected] :
+       {std::pair{Eigen::Vector3d(1e-4 * along), StickSlip::Stick},
+        std::pair{Eigen::Vector3d(1.0 * along + 0.3 * bore.axis), StickSlip::Slip}}) {
+    const Eigen::Vector3d xi_old = x - offset;
+    const auto friction = [&](const Eigen::Vector3d& y) {
+      return coulomb_friction(project(Obstacle{bore}, y), y, xi_old, t_old, area, eps_n, eps_t, mu)
+          .residual;
+    };
+    const FrictionResult f = coulomb_friction(p, x, xi_old, t_old, area, eps_n, eps_t, mu);
+    ASSERT_EQ(f.state, expected);
+    EXPECT_LE(relative_error(fd_jacobian(friction, x), f.tangent), 1e-6);
   }
 }
 

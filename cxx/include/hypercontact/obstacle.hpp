@@ -37,11 +37,13 @@ struct RigidBox {
 };
 
 /// Circular cylinder of infinite length: axis through `point` along the unit vector `axis`,
-/// radius `radius` > 0; the admissible region is outside it (a smooth rigid die).
+/// radius `radius` > 0; the admissible region is outside it (a smooth rigid die), or with
+/// `inside` the region inside it (a bore, the outer wall of a groove).
 struct RigidCylinder {
   Eigen::Vector3d point;
   Eigen::Vector3d axis;
   double radius;
+  bool inside = false;
 };
 
 /// Ball of centre `center` and radius `radius` > 0; the admissible region is outside it (a

@@ -11,7 +11,9 @@ namespace hypercontact {
 /// The same formulas hold inside (g < 0: the closest surface point is radially outward), so the
 /// gap, the normal and its derivative are smooth everywhere except on the axis, where the
 /// normal is undefined: there (ρ below 1e-12 R) n is any unit vector normal to a, ∂n/∂x = 0.
-/// Always Feature::Face. The result is never NaN.
+/// A bore (cylinder.inside) is the same surface seen from within: g = R − ρ, n = −d/ρ,
+/// ∂n/∂x = −(I − a aᵀ − n nᵀ)/ρ; its axis is the point farthest from the wall, where any
+/// radial n is as good as another. Always Feature::Face. The result is never NaN.
 ObstacleProjection project_to_cylinder(const RigidCylinder& cylinder, const Eigen::Vector3d& x);
 
 }  // namespace hypercontact

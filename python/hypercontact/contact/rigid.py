@@ -29,7 +29,7 @@ def make_obstacle(kind, where, pose):
         return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]))
     if kind == "cylinder":
         return _cpp.RigidCylinder(pose.point(where["point"]), pose.direction(where["axis"]),
-                                  float(where["radius"]))
+                                  float(where["radius"]), bool(where.get("inside", False)))
     if kind == "sphere":
         return _cpp.RigidSphere(pose.point(where["center"]), float(where["radius"]))
     raise ValueError(f"unknown obstacle {kind!r}")
@@ -93,7 +93,8 @@ class RigidObstacle:
         facets, each spread over its facet's nodes) or "auto"
         (:func:`rigid_integration`)."""
         self.kind = spec["obstacle"]
-        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center") if k in spec}
+        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center", "inside")
+                     if k in spec}
         self.axis, self.pivot = rotation_pivot(spec)
         self.comm = V.mesh.comm
         gid = dfx.global_node_indices(V).astype(np.int64)

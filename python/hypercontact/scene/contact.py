@@ -138,6 +138,8 @@ class CylinderContact(TurningContact):
     axis: vector(NON_ZERO_VECTOR) = [0.0, 1.0, 0.0]
     radius: number((lambda x: x > 0, "a radius > 0 (the cylinder's axis passes through point, along axis)"),
                    LENGTH)
+    #: true: the body is inside the cylinder (a bore, the outer wall of a groove); false: outside (a die)
+    inside: Boolean = False
 
 
 class SphereContact(TurningContact):
