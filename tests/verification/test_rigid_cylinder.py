@@ -7,6 +7,8 @@ ended, and full sliding transmits Fx = μ Fz).
 References independent of the code: the plane obstacle (another projection
 and kernel path) and, for a stiff block, the rigid-block closed forms
 N = ε_N A δ and T = μ N."""
+import csv
+
 import numpy as np
 import pytest
 from conftest import quiet
@@ -55,8 +57,12 @@ def run(data):
 
 def test_a_cylinder_of_huge_radius_presses_like_a_plane(out_dir):
     _, f_cyl = run(block(out_dir / "cyl", cylinder([0.0, 0.0, -DELTA])))
-    _, f_plane = run(block(out_dir / "plane", {"obstacle": "plane", "point": [0.0, 0.0, 1.0],
-                                              "normal": [0.0, 0.0, -1.0], "motion": [0.0, 0.0, -DELTA]}))
+    sim, f_plane = run(block(out_dir / "plane", {"obstacle": "plane", "point": [0.0, 0.0, 1.0],
+                                                "normal": [0.0, 0.0, -1.0], "motion": [0.0, 0.0, -DELTA]}))
+    # the plane loads the whole top: its reference area, 1, and so does the results' die_area column
+    assert sim.contacts[0].contact_area() == pytest.approx(1.0, rel=1e-12)
+    with open(out_dir / "plane" / "curves.csv") as f:
+        assert float(list(csv.DictReader(f))[-1]["die_area"]) == pytest.approx(1.0, rel=1e-12)
     # the top's corners sit (0.5² + 0.5²)/(2R) = 2.5e-5 below the cylinder: ~1e-3 of δ
     assert f_cyl[2] == pytest.approx(f_plane[2], rel=2e-3)
     assert f_plane[2] == pytest.approx(-EPS * 1.0 * DELTA, rel=1e-3)  # N = ε_N A δ, pushes down

@@ -98,6 +98,13 @@ class Contact:
             self.prepare(u)
         return self.comm.allreduce(self.state.num_closed if self.on else 0, op=MPI.SUM)
 
+    def contact_area(self):
+        """Reference area of the slave points that carry pressure at the prepared state (all ranks):
+        each point's weight (nodal area or Gauss weight), so it resolves the contact zone's edge to
+        about one point spacing."""
+        local = float(self.geometry.point_area[self.state.pressure > 0.0].sum()) if self.on else 0.0
+        return self.comm.allreduce(local, op=MPI.SUM)
+
     def add_residual(self, b):
         if self.on:
             self.evaluation.add_residual(b)
@@ -206,7 +213,7 @@ class Contact:
 
     # --- results -------------------------------------------------------------------
     def observable_names(self):
-        names = ["displacement", "fx", "fy", "fz", "closed_nodes"]
+        names = ["displacement", "fx", "fy", "fz", "closed_nodes", "area"]
         if self.frictional:
             names += ["dissipation_step", "dissipation", "stick_nodes", "slip_nodes", "stick_slip_flips"]
         return names
@@ -214,11 +221,11 @@ class Contact:
     def observables(self):
         """Scalars of the prepared evaluation and the committed history, all ranks:
         the obstacle's displacement, the force of the master on the slave body
-        (normal and tangential), closed points, and with friction the
+        (normal and tangential), closed points, the loaded reference area, and with friction the
         dissipation (step, accumulated, N mm), stick/slip counts and flips."""
         force = self.force()  # zero switched off
         out = {"displacement": self.geometry.displacement(), "fx": float(force[0]), "fy": float(force[1]),
-               "fz": float(force[2]), "closed_nodes": self.num_closed()}
+               "fz": float(force[2]), "closed_nodes": self.num_closed(), "area": self.contact_area()}
         out.update(self.law.observables())
         return out
 

@@ -3,7 +3,7 @@
 - ``fields.xdmf``: see :mod:`.fields`.
 - ``curves.csv``: one row per converged step: load factor, each contact's
   observables (obstacle displacement, force on the body × symmetry factor,
-  closed points; with friction the dissipation of the step and accumulated,
+  closed points, loaded contact area × symmetry factor; with friction the dissipation of the step and accumulated,
   N mm × symmetry factor, the stick and slip counts and flips, and the totals
   over all frictional contacts), probe displacements, Newton iterations.
 - ``summary.json``: the scene as it ran, the effects built, status, every
@@ -40,8 +40,8 @@ from . import drawing
 from ..scene.path import LoadPath
 from .fields import FieldWriter
 
-#: contact observables multiplied by the symmetry factor (forces and energies)
-SCALED = {"fx", "fy", "fz", "dissipation_step", "dissipation"}
+#: contact observables multiplied by the symmetry factor (forces, energies and the contact area)
+SCALED = {"fx", "fy", "fz", "area", "dissipation_step", "dissipation"}
 
 
 class ResultsWriter:
