@@ -47,16 +47,14 @@ def contact_modulus(*bodies):
 
 def young_poisson(material):
     """(E, ν) at small strain of a scene material of a built-in law."""
-    from .contact.penalty import p_wave_modulus
+    from .contact.penalty import small_strain_moduli
 
     law, params = material["law"], material["parameters"]
     try:
-        M = p_wave_modulus(law, params)
+        K, mu = small_strain_moduli(law, params)
     except (ValueError, KeyError):
         raise SceneError(f"reference 'hertz': no small-strain moduli for the material law {law!r} "
                          "(needs a built-in law with K: neo_hookean, mooney_rivlin)") from None
-    K = float(params["K"])
-    mu = 0.75 * (M - K)
     return 9.0 * K * mu / (3.0 * K + mu), (3.0 * K - 2.0 * mu) / (2.0 * (3.0 * K + mu))
 
 

@@ -8,7 +8,7 @@ import pytest
 from mpi4py import MPI
 
 from hypercontact import scene
-from hypercontact.contact.penalty import p_wave_modulus
+from hypercontact.contact.penalty import indentation_modulus
 from hypercontact.scene import SceneError
 from hypercontact.simulation import Simulation
 
@@ -52,15 +52,17 @@ def test_same_scene_in_mm_mpa_and_m_pa_gives_the_same_results(tmp_path):
 
 
 def test_automatic_penalty_value(tmp_path):
-    """ε_N = s M / h with M = K + 4/3 μ and h the first element layer's
-    thickness (10 mm / 2 layers = 5 mm on the coarse punch)."""
+    """ε_N = s M / h with M = E/(1 − ν²) (E and ν from K and μ) and h the first element
+    layer's thickness (10 mm / 2 layers = 5 mm on the coarse punch)."""
     data = punch()
     data["contact"][1]["penalty_factor"] = 30.0
     sc = scene.load(data, [f"output.dir={tmp_path}"])
     sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
     p = sc["material"]["parameters"]
-    M = p["K"] + 4.0 / 3.0 * 2.0 * (p["alpha1"] + p["alpha2"])
-    assert p_wave_modulus("mooney_rivlin", p) == pytest.approx(M, rel=1e-15)
+    K, mu = p["K"], 2.0 * (p["alpha1"] + p["alpha2"])
+    E, nu = 9.0 * K * mu / (3.0 * K + mu), (3.0 * K - 2.0 * mu) / (2.0 * (3.0 * K + mu))
+    M = E / (1.0 - nu ** 2)
+    assert indentation_modulus("mooney_rivlin", p) == pytest.approx(M, rel=1e-14)
     assert sim.contact_settings[0].eps_n == pytest.approx(100.0 * M / 5.0, rel=1e-12)
     assert sim.contact_settings[1].eps_n == pytest.approx(30.0 * M / 5.0, rel=1e-12)
     assert sim.contacts[1].eps_n == sim.contact_settings[1].eps_n

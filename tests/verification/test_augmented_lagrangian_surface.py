@@ -24,6 +24,12 @@ from reference.augmentations import run_counting_augmentations
 from reference.homogeneous import mooney_rivlin_principal, nominal_stress
 
 HERTZ_MESH = (6, 6, 4, 4)  # block n, m; ball n, m
+# The factors below were chosen, and the 1 % measured, when the automatic penalty's modulus was
+# K + 4/3 μ (13.46 MPa for the ball's E = 10, ν = 0.3); it is now E* = E/(1 − ν²) = 10.99 MPa. The
+# factors are scaled by their ratio so that ε_N spans the same four decades as when measured (at the
+# unscaled factor 10 the augmented force is −1.03 % off the stiff penalty's: the 0.9 % estimate
+# below is not a bound there).
+TO_SAME_EPS_N = (8.333333333333334 + 4.0 / 3.0 * 3.846153846153846) / (10.0 / (1.0 - 0.3 ** 2))
 
 
 def run(name, overrides):
@@ -37,7 +43,7 @@ def run(name, overrides):
 def hertz(tmp_path, factor, enforcement):
     nb, mb, ns, ms = HERTZ_MESH
     return run("hertz.toml", [f"mesh.n={nb}", f"mesh.m={mb}", f"body.0.n={ns}", f"body.0.m={ms}",
-                              "contact.0.eps_n=0", f"contact.0.penalty_factor={factor}",
+                              "contact.0.eps_n=0", f"contact.0.penalty_factor={factor * TO_SAME_EPS_N}",
                               f'contact.0.enforcement="{enforcement}"', "contact.0.max_augmentations=30",
                               f"output.dir={tmp_path}"])
 

@@ -2,16 +2,28 @@
 
     ε_N = s · M / h,
 
-with s the scene's dimensionless ``penalty_factor``, M = K + 4/3 μ the
-small-strain P-wave modulus of the slave body's material (the stiffness of a
-column of material under a pressure on its end) and h = Σ V_e / Σ A_f the
-thickness of the layer of elements under the slave surface (the volume of the
-cells that touch the slave facets over the facets' area, reference
-configuration). The penalty pressure ε_N g for a penetration g then equals
-s × the stress that compresses that element layer by g: with s = 100 the
-penetration is about 1 % of the elastic compression of the first element
-layer. Both M and h scale with the units (MPa and mm, or Pa and m), so the
-same scene in either gives the same dimensionless results.
+with s the scene's dimensionless ``penalty_factor``, M = E/(1 − ν²) =
+4μ (3K + μ)/(3K + 4μ) the small-strain indentation (plane-strain) modulus of
+the slave body's material — the modulus of Hertz's and Boussinesq's
+solutions, how stiff a body is to a pressure on a part of its surface — and
+h = Σ V_e / Σ A_f the thickness of the layer of elements under the slave
+surface (the volume of the cells that touch the slave facets over the
+facets' area, reference configuration). The penalty pressure ε_N g for a
+penetration g then equals s × the pressure that indents the surface by g
+over a patch of size h: with s = 100 the penetration is about 1 % of the
+body's own deflection under the contact pressure. Both M and h scale with
+the units (MPa and mm, or Pa and m), so the same scene in either gives the
+same dimensionless results.
+
+Why not the P-wave modulus K + 4/3 μ (the stiffness of a laterally confined
+column, used before): for nearly incompressible rubber (K/μ = 10³) it is
+~K, about 250 times the ~4μ with which the body actually gives way under a
+contact pressure, and so a penalty 250 times stiffer than the factor says. Newton then chatters
+(an O-ring of P2–P1 tetrahedra at K/μ = 10³: Δλ cut to 6e-4 and 10–40
+iterations per step, docs/verification.md §13). The two agree at ν = 0
+(2μ) and differ by 1.2× at ν = 0.3; only a thin layer confined under a
+broad contact is stiffer than E*, by up to (K + 4/3 μ)/E*: there the
+penetration's share grows by that factor (penalty_factor is the knob).
 """
 import numpy as np
 import ufl
@@ -21,14 +33,21 @@ from .. import _dolfinx as dfx
 from ..forms.registry import LAWS
 
 
-def p_wave_modulus(law, params):
-    """K + 4/3 μ0 of a built-in law at small strain, μ0 from the law registry
-    (every volumetric energy, materials.VOLUMETRIC, has Ψ0''(1) = K: the same
-    M whichever it is)."""
+def small_strain_moduli(law, params):
+    """(K, μ0) of a built-in law at small strain, μ0 from the law registry
+    (every volumetric energy, materials.VOLUMETRIC, has Ψ0''(1) = K)."""
     if law not in LAWS:
         raise ValueError(f"automatic penalty: no small-strain modulus for law {law!r}")
     mu, _ = LAWS[law].shear_modulus(LAWS[law].with_defaults(params))
-    return params["K"] + 4.0 / 3.0 * mu
+    return float(params["K"]), float(mu)
+
+
+def indentation_modulus(law, params):
+    """E* = E/(1 − ν²) = 4μ (3K + μ)/(3K + 4μ) at small strain; 4μ for K = ∞."""
+    K, mu = small_strain_moduli(law, params)
+    if K == float("inf"):
+        return 4.0 * mu
+    return 4.0 * mu * (3.0 * K + mu) / (3.0 * K + 4.0 * mu)
 
 
 def layer_thickness(V, facet_tags, tag):
@@ -64,6 +83,6 @@ def smoothing_band(spec, V, facet_tags, tags):
 
 def automatic_penalty(factor, law, params, V, facet_tags, tag):
     """(ε_N, M, h) for a slave surface (see the module docstring)."""
-    M = p_wave_modulus(law, params)
+    M = indentation_modulus(law, params)
     h = layer_thickness(V, facet_tags, tag)
     return factor * M / h, M, h
