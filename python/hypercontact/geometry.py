@@ -400,6 +400,11 @@ def build_mesh(comm, mesh, bodies=()):
         return body
     if bodies or any(g != 1.0 for g in mesh["grading"]):
         return build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in bodies])
+    if mesh["builder"] == "oring":
+        from .oring import oring_model
+
+        keys = ("mean_diameter", "cord_diameter", "n", "m", "cells", "cross_section", "order")
+        return _from_gmsh(comm, lambda g: oring_model(g, *(mesh[k] for k in keys)))
     if mesh["builder"] == "shell_octant":
         from .shell import build_shell_octant
 

@@ -61,7 +61,7 @@ RULES = [
     ("blocks", {"contact.0.master": "zmax+xmax", "contact.0.passes": 2}, "contact[0].passes",
      "single master surface"),
     ("blocks", {"contact.0.master": ""}, "contact[0].master", "needs the master surface's name"),
-    ("sphere", {"mesh.cells": "tetrahedra"}, "mesh.cells", "applies to the box builder"),
+    ("sphere", {"mesh.cells": "tetrahedra"}, "mesh.cells", "applies to the box and oring builders"),
     ("blocks", {"mesh.cells": "tetrahedra"}, "mesh.cells", "several bodies are built of hexahedra"),
     # the incompressible limit and the mixed formulation
     ("sphere", {"material.parameters.K": float("inf")}, "material.parameters.K", "K = inf (incompressible) needs"),

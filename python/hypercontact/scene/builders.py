@@ -2,9 +2,10 @@
 surfaces it names, how many hexahedra it makes, and what its keys must
 satisfy for the mesh not to degenerate.
 
-``[mesh]`` is built by "box", "shell_octant" or read from a "file";
+``[mesh]`` is built by "box", "shell_octant", "oring" or read from a "file";
 ``[[body]]`` entries by "box", "shell_octant" or "hemisphere".
 """
+import math
 from dataclasses import dataclass
 
 from .errors import Invalid
@@ -24,11 +25,24 @@ class Builder:
     graded: bool = False  #: takes grading
 
     def cells(self, spec):
-        """Number of cells of the builder's keys ``spec``."""
+        """Number of cells of the builder's keys ``spec`` (the O-ring's tetrahedra: an estimate)."""
         n, m = spec["n"], spec["m"]
         if self.name == "shell_octant":
             return 3 * (n // 2) ** 2 * m
+        if self.name == "oring":
+            share = 0.5 if spec["cross_section"] == "half" else 1.0
+            if spec["cells"] == "tetrahedra":  # gmsh's Delaunay mesh: about 5.4 tetrahedra per h³, h = d/n
+                volume = share * math.pi ** 3 / 16 * spec["mean_diameter"] * spec["cord_diameter"] ** 2
+                return int(5.4 * volume / (spec["cord_diameter"] / n) ** 3)
+            return int(share * 3 * n * n * m / 4)
         return n * n * m * (6 if spec.get("cells") == "tetrahedra" else 1)
+
+    def surfaces_of(self, spec):
+        """The surfaces the builder makes with the keys ``spec``: a whole O-ring cross-section
+        has no mid-plane zmin."""
+        if self.name == "oring" and spec["cross_section"] == "full":
+            return {k: v for k, v in self.surfaces.items() if k != "zmin"}
+        return self.surfaces
 
 
 BUILDERS = {
@@ -38,6 +52,7 @@ BUILDERS = {
                             main=True, body=True),
     "hemisphere": Builder("hemisphere", {"curved": None, "flat": 2, "xmin": 0, "ymin": 1}, body=True,
                           graded=True),
+    "oring": Builder("oring", {"outer": None, "xmin": 0, "ymin": 1, "zmin": 2}, main=True),
     "file": Builder("file", main=True),
 }
 #: What the box builder's cells may be (mesh.cells).
@@ -63,9 +78,14 @@ def check_shape(spec):
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
         raise Invalid(f"grading applies to the {' and '.join(n for n, b in BUILDERS.items() if b.graded)} "
                       f"builders, not {builder.name!r}", "grading")
-    if spec.get("cells", "hexahedra") != "hexahedra" and builder.name != "box":
-        raise Invalid(f"cells = {spec['cells']!r} applies to the box builder, not {builder.name!r}", "cells")
-    {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere}[builder.name](spec)
+    if spec.get("order", 1) != 1 and builder.name != "oring":
+        raise Invalid(f"order applies to the oring builder, not {builder.name!r} (a second-order mesh of another "
+                      f"shape: a gmsh file written with Mesh.ElementOrder = 2)", "order")
+    if spec.get("cells", "hexahedra") != "hexahedra" and builder.name not in ("box", "oring"):
+        raise Invalid(f"cells = {spec['cells']!r} applies to the box and oring builders, not {builder.name!r}",
+                      "cells")
+    {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere,
+     "oring": _check_oring}[builder.name](spec)
     cells = builder.cells(spec)
     if cells > MAX_CELLS:
         kind = "tetrahedra" if spec.get("cells") == "tetrahedra" else "hexahedra"
@@ -96,3 +116,16 @@ def _check_hemisphere(spec):
     if min(spec["grading"]) < 1.0:
         raise Invalid(f"the hemisphere's grading clusters cells towards its pole only: expected numbers >= 1, "
                       f"found {spec['grading']}", "grading")
+
+
+def _check_oring(spec):
+    d, D = spec["cord_diameter"], spec["mean_diameter"]
+    if not d < D:
+        raise Invalid(f"expected a cord_diameter less than mean_diameter ({D:g}): the torus would cross its axis, "
+                      f"found {d:g}", "cord_diameter")
+    if d < 1e-4 * D:
+        raise Invalid(f"expected a cord_diameter of at least 1e-4 × mean_diameter ({D:g}), found {d:g}",
+                      "cord_diameter")
+    if spec["cells"] == "hexahedra" and spec["n"] % 4:
+        raise Invalid(f"the O-ring's hexahedral O-grid needs a multiple of 4 cells across the cord (n/4 radially "
+                      f"in each patch, n/2 along each core edge), found {spec['n']}", "n")

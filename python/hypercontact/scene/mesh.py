@@ -8,8 +8,8 @@ from pydantic import root_validator, validator
 from .base import SceneModel
 from .builders import BODY_BUILDERS, CELL_KINDS, MESH_BUILDERS, check_shape, choices
 from .errors import Invalid, printable
-from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, integer,
-                     number, one_of, string, vector)
+from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, from_to,
+                     integer, number, one_of, string, vector)
 from .material import Material
 from .paths import existing_file
 
@@ -28,8 +28,16 @@ class Mesh(SceneModel):
     n: integer(POSITIVE) = 4
     m: integer(POSITIVE) = 4
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
-    #: the box builder's cells: hexahedra, or each hexahedron split into six tetrahedra
+    #: the box builder's cells: hexahedra, or each hexahedron split into six tetrahedra (the oring
+    #: builder's: an O-grid of hexahedra, or gmsh's Delaunay tetrahedra)
     cells: string(one_of(CELL_KINDS, choices(CELL_KINDS))) = "hexahedra"
+    #: the oring builder (hypercontact/oring.py): a quarter torus about z
+    mean_diameter: number(POSITIVE, LENGTH) = 24.0
+    cord_diameter: number(POSITIVE, LENGTH) = 4.0
+    #: "half": z >= 0 with the symmetry plane zmin (squeezed between plates); "full": the whole cord
+    cross_section: string(one_of(("half", "full"), '"half" or "full"')) = "half"
+    #: the oring builder's geometry: 1 (straight-sided cells) or 2 (second-order cells on the torus)
+    order: integer(from_to(1, 2, "1 or 2")) = 1
     file: string(FILE_NAME) = ""
     #: random node displacements of this fraction of the smallest cell's size (fixed per node):
     #: a check that results move continuously with the data, not a modelling feature

@@ -76,7 +76,7 @@ def incompressible_needs_mixed(s):
 def surfaces(s):
     """Surface name → axis of its normal (None: curved) of a built mesh,
     the [[body]] surfaces prefixed with the body's name; None for a file."""
-    named = BUILDERS[s.mesh.builder].surfaces
+    named = BUILDERS[s.mesh.builder].surfaces_of(s.mesh.dict())
     if named is None:
         return None
     named = dict(named)
