@@ -24,5 +24,6 @@ if grep -qw avx /proc/cpuinfo 2>/dev/null; then
   OPENBLAS_CORETYPE=Sandybridge .venv/bin/python -m pytest -q -p no:cacheprovider \
     tests/behaviour/test_robustness.py tests/verification/test_punch_friction.py tests/verification/test_friction.py \
     tests/verification/test_friction_block.py tests/verification/test_surface_friction.py \
-    tests/behaviour/test_step_control.py tests/behaviour/test_contact_protocol.py tests/hard
+    tests/behaviour/test_step_control.py tests/behaviour/test_contact_protocol.py tests/hard \
+    tests/verification/test_oring.py
 fi
