@@ -13,7 +13,9 @@ from petsc4py import PETSc
 import dolfinx
 import dolfinx.cpp.mesh
 import dolfinx.fem.petsc as fem_petsc
+import dolfinx.graph
 import dolfinx.io
+import dolfinx.mesh
 import dolfinx.jit
 import ufl
 from dolfinx import fem
@@ -73,11 +75,33 @@ def watch_jit_compilation(listener):
     _compiler_log.listener = listener
 
 
+def partitioner():
+    """The cell partitioner of every mesh: SCOTCH seeded afresh on each call,
+    run with one thread (SCOTCH_PTHREAD_NUMBER, hypercontact/__init__.py).
+    With dolfinx's default the same mesh built twice in one process was
+    sometimes split differently, and a checkpoint (one file per rank) then
+    did not fit the mesh it was resumed on (tests/behaviour/test_partition.py)."""
+    return dolfinx.mesh.create_cell_partitioner(dolfinx.graph.partitioner_scotch(0.025, 0))
+
+
+def _create_mesh(comm, cells, x, domain):
+    return _gmshio_create_mesh(comm, cells, x, domain, partitioner=partitioner())
+
+
+_gmshio_create_mesh = gmshio.create_mesh
+
+
 def mesh_from_gmsh(model, comm):
     """Distribute the gmsh model living on rank 0; return (mesh, cell_tags,
     facet_tags), the cells tagged by their physical volume (only cells of
-    physical volumes become cells)."""
-    return gmshio.model_to_mesh(model, comm, 0, gdim=3)
+    physical volumes become cells). The cells are partitioned by
+    :func:`partitioner` (gmshio.model_to_mesh takes no partitioner: its
+    create_mesh is swapped for the call)."""
+    gmshio.create_mesh = _create_mesh
+    try:
+        return gmshio.model_to_mesh(model, comm, 0, gdim=3)
+    finally:
+        gmshio.create_mesh = _gmshio_create_mesh
 
 
 def vector_space(mesh, degree):
@@ -387,7 +411,7 @@ def mesh_from_arrays(comm, x, cells, cell_values, facets, facet_values):
     cells = np.asarray(cells, dtype=np.int64).reshape(-1, corners)
     cells = cells[:, gmshio.cell_perm_array(cell_type, corners)]
     x = np.asarray(x, dtype=np.float64).reshape(-1, 3)
-    mesh = gmshio.create_mesh(comm, cells, x, ufl_domain)
+    mesh = _create_mesh(comm, cells, x, ufl_domain)
     tdim = mesh.topology.dim
     entities, values = dolfinx.cpp.io.distribute_entity_data(
         mesh._mesh, tdim, cells, np.asarray(cell_values, dtype=np.int32))

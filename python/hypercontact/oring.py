@@ -112,9 +112,7 @@ def _tetrahedra(gmsh, Rm, r, n, half):
         box = occ.addBox(0.0, 0.0, 0.0, Rm + 2 * r, Rm + 2 * r, 2 * r)
         occ.intersect([(3, torus)], [(3, box)])
     occ.synchronize()
-    h = 2 * r / n
-    gmsh.option.setNumber("Mesh.CharacteristicLengthMin", h)
-    gmsh.option.setNumber("Mesh.CharacteristicLengthMax", h)
+    return 2 * r / n
 
 
 def _name_surfaces(gmsh, tol):
@@ -140,12 +138,27 @@ def oring_model(gmsh, mean_diameter, cord_diameter, n, m, cells="hexahedra", cro
     _check(mean_diameter, cord_diameter, n, cells, cross_section, order)
     gmsh.model.add("oring")
     Rm, r, half = mean_diameter / 2.0, cord_diameter / 2.0, cross_section == "half"
+    sizes = {}
     if cells == "hexahedra":
         _hexahedra(gmsh, Rm, r, n, m, half)
     else:
-        _tetrahedra(gmsh, Rm, r, n, half)
+        h = _tetrahedra(gmsh, Rm, r, n, half)
+        sizes = {"Mesh.CharacteristicLengthMin": h, "Mesh.CharacteristicLengthMax": h}
     _name_surfaces(gmsh, 1e-6 * mean_diameter + 1e-6)
-    gmsh.model.mesh.generate(3)
+    # gmsh's options outlive the model in the session: each is set for this mesh and restored after it,
+    # or it would size (or order) every mesh built after it in the process
+    saved = {k: gmsh.option.getNumber(k) for k in sizes}
+    try:
+        for k, v in sizes.items():
+            gmsh.option.setNumber(k, v)
+        gmsh.model.mesh.generate(3)
+    finally:
+        for k, v in saved.items():
+            gmsh.option.setNumber(k, v)
     if order == 2:
-        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
-        gmsh.model.mesh.setOrder(2)
+        incomplete = gmsh.option.getNumber("Mesh.SecondOrderIncomplete")
+        gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)  # 27-node hexahedra, not 20-node
+        try:
+            gmsh.model.mesh.setOrder(2)
+        finally:
+            gmsh.option.setNumber("Mesh.SecondOrderIncomplete", incomplete)

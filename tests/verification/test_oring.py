@@ -174,3 +174,16 @@ def test_groove_is_the_plates_until_a_wall_touches_then_holds_the_cord(scenes_di
             assert float(p["outer_ux"]) > wall  # between plates alone the cord would have gone through it
     assert touched
     assert abs(float(groove[-1]["flange_fz"])) > 1.2 * abs(float(plates[-1]["plate_fz"]))
+
+
+def test_the_builder_leaves_gmsh_options_as_it_found_them():
+    """gmsh's options outlive a model in the process: the tetrahedral O-ring's mesh size and the
+    second-order switch must not size or order the meshes built after it."""
+    from hypercontact.geometry import _gmsh
+
+    gmsh = _gmsh()
+    keys = ("Mesh.CharacteristicLengthMin", "Mesh.CharacteristicLengthMax", "Mesh.SecondOrderIncomplete",
+            "Mesh.ElementOrder")
+    before = {k: gmsh.option.getNumber(k) for k in keys}
+    measured("tetrahedra", "half", 2, n=4)
+    assert {k: gmsh.option.getNumber(k) for k in keys} == before
