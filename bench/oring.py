@@ -368,6 +368,7 @@ def main():
     p.add_argument("--out", type=Path, default=OUT)
     p.add_argument("--from-json", type=Path, help="rewrite the report and plot from a results JSON, running "
                                                    "nothing")
+    p.add_argument("--merge", type=Path, help="keep the runs of the kinds not run now from this results JSON")
     args = p.parse_args()
     if args.from_json:
         data = json.loads(args.from_json.read_text())
@@ -375,6 +376,8 @@ def main():
         return
     ladder = {k: v for k, v in (QUICK if args.quick else LADDER).items() if k in args.kinds}
     rows = []
+    if args.merge:
+        rows = [r for r in json.loads(args.merge.read_text())["runs"] if r["kind"] not in args.kinds]
     ladder_wall = {}
     for kind, sizes in ladder.items():
         slow = None

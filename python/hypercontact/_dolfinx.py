@@ -482,6 +482,18 @@ def owned_exterior_facets(mesh):
     return nodes, cells
 
 
+def interior_facets_with_tag(mesh, facet_tags, tag):
+    """How many facets with ``tag`` lie inside the mesh (between two cells), over all ranks: each facet
+    counted once, by the rank that owns it."""
+    tdim = mesh.topology.dim
+    mesh.topology.create_connectivity(tdim - 1, tdim)
+    n_owned = mesh.topology.index_map(tdim - 1).size_local
+    tagged = facets_with_tag(facet_tags, tag)
+    tagged = tagged[tagged < n_owned]
+    exterior = dolfinx.mesh.exterior_facet_indices(mesh.topology)
+    return mesh.comm.allreduce(int(np.count_nonzero(~np.isin(tagged, exterior))), op=MPI.SUM)
+
+
 def cell_dofs(S, cells):
     """The dof of each process-local cell in a one-dof-per-cell (DG0) space S."""
     return S.dofmap.list.array.reshape(-1, 1)[cells, 0] if len(cells) else cells

@@ -116,9 +116,15 @@ def _tetrahedra(gmsh, Rm, r, n, half):
 
 
 def _name_surfaces(gmsh, tol):
-    """Physical surfaces: planes x = 0, y = 0, z = 0 are xmin, ymin, zmin, the rest is the torus, outer."""
+    """Physical surfaces: planes x = 0, y = 0, z = 0 are xmin, ymin, zmin, the rest of the body's boundary is
+    the torus, outer. The surfaces inside the body (the revolved spokes and seams of the hexahedral O-grid)
+    are in no group: a surface group holds boundary facets only."""
     groups = {}
+    volumes = gmsh.model.getEntities(3)
+    boundary = {tag for _, tag in gmsh.model.getBoundary(volumes, combined=True, oriented=False)}
     for _, tag in gmsh.model.getEntities(2):
+        if tag not in boundary:
+            continue
         b = gmsh.model.getBoundingBox(2, tag)
         name = "outer"
         for axis, a in enumerate("xyz"):

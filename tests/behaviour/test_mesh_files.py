@@ -86,3 +86,49 @@ def test_mixed_kinds_are_refused(out_dir):
     with pytest.raises(ValueError, match=r"mixes volume elements \((8-node hexahedra and 4-node tetrahedra|"
                                          r"4-node tetrahedra and 8-node hexahedra)\): one kind and one order"):
         geometry.read_msh(MPI.COMM_WORLD, msh)
+
+
+@pytest.mark.mpi
+def test_a_contact_surface_with_faces_inside_the_body_is_refused(out_dir):
+    """Two conforming boxes in one body, the surface group "top" holding the top face and the face
+    the boxes share: contact on it is refused before the run, naming the key and the count."""
+    from hypercontact.scene.errors import SceneError
+
+    msh = out_dir / "inner_face.msh"
+    if MPI.COMM_WORLD.rank == 0:
+        gmsh = geometry._gmsh()
+        gmsh.clear()
+        gmsh.model.add("inner_face")
+        gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+        gmsh.model.occ.addBox(0, 0, 1, 1, 1, 1)
+        gmsh.model.occ.fragment([(3, 1)], [(3, 2)])
+        gmsh.model.occ.synchronize()
+        faces = {}
+        for _, tag in gmsh.model.getEntities(2):
+            b = gmsh.model.getBoundingBox(2, tag)
+            if abs(b[2] - b[5]) < 1e-4:  # horizontal (occ pads its boxes by ~1e-7)
+                faces[round((b[2] + b[5]) / 2)] = tag
+        gmsh.model.addPhysicalGroup(2, [faces[2], faces[1]], 1)
+        gmsh.model.setPhysicalName(2, 1, "top")
+        gmsh.model.addPhysicalGroup(2, [faces[0]], 2)
+        gmsh.model.setPhysicalName(2, 2, "bottom")
+        gmsh.model.addPhysicalGroup(3, [e[1] for e in gmsh.model.getEntities(3)], 100)
+        gmsh.model.setPhysicalName(3, 100, "body")
+        gmsh.option.setNumber("Mesh.CharacteristicLengthMax", 0.5)
+        gmsh.model.mesh.generate(3)
+        gmsh.write(str(msh))
+        gmsh.option.setNumber("Mesh.CharacteristicLengthMax", 1e22)
+        gmsh.clear()
+    MPI.COMM_WORLD.barrier()
+    data = {"mesh": {"builder": "file", "file": str(msh)},
+            "material": {"law": "neo_hookean", "parameters": {"mu": 1.0, "K": 10.0}},
+            "bc": [{"surface": "bottom", "fix": ["x", "y", "z"]}],
+            "contact": [{"name": "lid", "surface": "top", "obstacle": "plane", "point": [0, 0, 2.0],
+                         "normal": [0, 0, -1.0], "motion": [0, 0, -0.1]}],
+            "output": {"dir": str(out_dir / "inner_face"), "xdmf": False}}
+    with pytest.raises(SceneError, match=r"contact\[0\]\.surface: surface 'top' has \d+ facets inside the body"):
+        Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)
+    data["contact"][0]["surface"] = "bottom"  # a boundary surface passes the check
+    data["bc"][0]["surface"] = "top"
+    data["contact"][0].update(point=[0, 0, 0], normal=[0, 0, 1.0])
+    Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)

@@ -187,3 +187,38 @@ def test_the_builder_leaves_gmsh_options_as_it_found_them():
     before = {k: gmsh.option.getNumber(k) for k in keys}
     measured("tetrahedra", "half", 2, n=4)
     assert {k: gmsh.option.getNumber(k) for k in keys} == before
+
+
+def squeeze_run(scenes_dir, out, comm, cells):
+    """The O-ring, n = m = 4, squeezed 18 % in four steps against a plate with Coulomb friction (μ = 0.3,
+    ε_T = 10 as the friction scenes choose it): curved second-order cells, quadratic slave nodes or
+    Gauss points of 6-node triangles, stick and slip."""
+    data = scene.load(scenes_dir / "oring_plates.toml",
+                      ["mesh.n=4", "mesh.m=4", f"mesh.cells={cells}", "contact.0.motion=[0.0, 0.0, -0.36]",
+                       "contact.0.mu=0.3", "contact.0.eps_t=10.0", "steps.initial=0.25", "steps.max=0.25",
+                       "output.xdmf=false", f"output.dir={out}"])
+    sim = Simulation(data, comm, log=quiet)
+    writer = sim.run(out_dir=str(out))
+    return sim, writer.steps
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("cells", ["hexahedra", "tetrahedra"])
+def test_two_ranks_equal_serial(cells, scenes_dir, out_dir, tmp_path):
+    """Quadratic contact with friction on the ranks of COMM_WORLD equals a serial run: every step's force,
+    sticking and slipping counts and the probes' displacements."""
+    if MPI.COMM_WORLD.size < 2:
+        pytest.skip("needs mpirun -n 2")
+    par_sim, par = squeeze_run(scenes_dir, out_dir, MPI.COMM_WORLD, cells)
+    ser_sim, ser = squeeze_run(scenes_dir, tmp_path / "serial", MPI.COMM_SELF, cells)
+    assert dfx.num_global_dofs(par_sim.w.function_space) == dfx.num_global_dofs(ser_sim.w.function_space)
+    assert len(par) == len(ser) == 4
+    assert any(s["plate_slip_nodes"] > 0 for s in ser) and any(s["plate_stick_nodes"] > 0 for s in ser)
+    for p, s in zip(par, ser):
+        assert p["load_factor"] == s["load_factor"]
+        for key in ("plate_stick_nodes", "plate_slip_nodes", "plate_closed_nodes"):
+            assert p[key] == s[key], key
+        for key in ("plate_fx", "plate_fy", "plate_fz"):
+            assert p[key] == pytest.approx(s[key], rel=1e-8, abs=1e-10 * abs(s["plate_fz"])), key
+        for key in ("top_uz", "outer_ux", "inner_ux"):
+            assert p[key] == pytest.approx(s[key], rel=1e-8, abs=1e-12), key

@@ -82,11 +82,14 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path,
     contacts, settings = [], []
     for i, entry in enumerate(scene["contact"]):
         slave = tag_of(entry["surface"], f"contact[{i}].surface")
+        _refuse_interior_facets(V.mesh, facet_tags, slave, entry["surface"], f"contact[{i}].surface")
         eps_n, note = _penalty(entry, slave, material_of, V, facet_tags)
         if entry["obstacle"] != "surface":
             pairs = [(entry["name"], [slave], None)]
         else:
             masters = [tag_of(m, f"contact[{i}].master") for m in entry["master"].split("+")]
+            for name, tag in zip(entry["master"].split("+"), masters):
+                _refuse_interior_facets(V.mesh, facet_tags, tag, name, f"contact[{i}].master")
             pairs = [(entry["name"], [slave], masters)]
             if entry["passes"] == 2:  # two-pass: each surface is slave once (frictionless)
                 pairs.append((f"{entry['name']}_pass2", masters, [slave]))
@@ -100,6 +103,19 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path,
             contacts.append(contact)
             settings.append(s)
     return contacts, settings
+
+
+def _refuse_interior_facets(mesh, facet_tags, tag, name, key):
+    """A contact surface is a boundary: facets between two cells (a mesh file whose surface group also
+    holds internal faces) would become slave points that never touch and weights that are not the
+    surface's."""
+    inside = dfx.interior_facets_with_tag(mesh, facet_tags, tag)
+    if inside:
+        from ..scene.errors import SceneError
+
+        raise SceneError(f"{key}: surface {name!r} has {inside} facets inside the body (between two cells); "
+                         "a contact surface must be on the body's boundary: take the internal faces out of its "
+                         "physical group")
 
 
 def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max, u_dofs, u_global):
