@@ -62,3 +62,16 @@ def test_without_grow_after_the_cut_step_stays(tmp_path):
     dlam, _, _ = run_with_one_failure(tmp_path / "stay", grow_after=0)
     assert dlam[0] == pytest.approx(0.1)
     assert np.allclose(dlam[1:-1], 0.05)
+
+
+def test_continuation_step_factor_holds_just_above_the_target():
+    """Arc length / displacement control: √(target / its) in [0.5, 2], except that one or two iterations
+    above the target keep the size (a count that does not fall with the step must not shrink it to
+    nothing)."""
+    from hypercontact.solve.path_following import step_factor
+
+    assert step_factor(5, 5) == 1.0
+    assert step_factor(6, 5) == step_factor(7, 5) == 1.0
+    assert step_factor(8, 5) == pytest.approx((5 / 8) ** 0.5)
+    assert step_factor(4, 5) == pytest.approx((5 / 4) ** 0.5)
+    assert step_factor(1, 5) == 2.0 and step_factor(25, 5) == 0.5
