@@ -77,3 +77,41 @@ def test_automatic_penalty_needs_a_built_in_law(tmp_path):
     data["material"] = {"law": f"python:{law}:psi", "parameters": {}}
     with pytest.raises(SceneError, match=r"contact\[0\]\.eps_n.*automatic penalty"):
         scene.load(copy.deepcopy(data), base_dir=tmp_path)
+
+
+def test_automatic_tangential_penalty_value_and_cap(tmp_path):
+    """With friction and eps_t = 0: ε_T = 10 G / h (G = 2(α1 + α2) of the Mooney law, h = 5 mm on the
+    coarse punch), capped at ε_N; frictionless contacts keep ε_T = ε_N (unused); a given eps_t stands."""
+    data = punch()
+    data["contact"][1]["mu"] = 0.3          # the base: automatic ε_N and ε_T
+    data["contact"][0].update(mu=0.3, eps_n=0.5)  # the punch: ε_N below 10 G / h caps ε_T
+    sc = scene.load(data, [f"output.dir={tmp_path}"])
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    p = sc["material"]["parameters"]
+    G = 2.0 * (p["alpha1"] + p["alpha2"])
+    base, top = sim.contact_settings[1], sim.contact_settings[0]
+    assert base.eps_t == pytest.approx(10.0 * G / 5.0, rel=1e-12)
+    assert base.eps_t < base.eps_n / 10.0
+    assert top.eps_t == top.eps_n == 0.5
+    assert sim.contacts[1].law.eps_t == base.eps_t
+    assert any("ε_T = " in e for e in sim.effects)
+    data["contact"][1]["eps_t"] = 7.0
+    data["contact"][0]["mu"] = 0.0
+    sim = Simulation(scene.load(data, [f"output.dir={tmp_path}"]), MPI.COMM_SELF, log=lambda *a, **k: None)
+    assert sim.contact_settings[1].eps_t == 7.0
+    assert sim.contact_settings[0].eps_t == sim.contact_settings[0].eps_n
+
+
+def test_automatic_tangential_penalty_is_unit_free(tmp_path):
+    """ε_T [N/mm³] = 1e-9 ε_T [N/m³], and the frictional punch's forces are the same in both units."""
+    runs = []
+    for scale in ((1.0, 1.0), (1e-3, 1e6)):
+        data = punch(*scale)
+        data["contact"][1]["mu"] = 0.3
+        runs.append(run(data, tmp_path / f"u{scale[0]:g}"))
+    (sim_mm, w_mm), (sim_m, w_m) = runs
+    assert sim_m.contact_settings[1].eps_t == pytest.approx(1e9 * sim_mm.contact_settings[1].eps_t, rel=1e-12)
+    assert len(w_mm.steps) == len(w_m.steps)
+    for a, b in zip(w_mm.steps, w_m.steps):
+        assert b["punch_fz"] == pytest.approx(a["punch_fz"], rel=1e-8)
+        assert b["base_fx"] == pytest.approx(a["base_fx"], rel=1e-7, abs=1e-9 * abs(a["punch_fz"]))

@@ -8,6 +8,7 @@ import pytest
 from mpi4py import MPI
 
 from hypercontact import scene
+from hypercontact.contact.penalty import indentation_modulus
 from hypercontact.simulation import Simulation
 
 from conftest import ROOT
@@ -62,7 +63,9 @@ def test_with_friction_the_gap_tolerance_is_reached_and_the_cone_holds(tmp_path)
         c.pop("eps_n")
         # ε_N = 12 × E* / h ≈ 3.4 N/mm³, soft against the scene's 100; ε_T = ε_N lets the rim slip
         c.update(penalty_factor=12.0, enforcement="augmented_lagrangian", gap_tolerance=TOL, max_augmentations=30)
-    data["contact"][0].update(mu=0.3, eps_t=0.0)
+    h = data["mesh"]["size"][2] / data["mesh"]["m"]  # the plate's first layer
+    data["contact"][0].update(mu=0.3, eps_t=12.0 * indentation_modulus("mooney_rivlin",
+                                                                        data["material"]["parameters"]) / h)
     sc = scene.load(data, [f"output.dir={tmp_path}"])
     sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
     sim.run(out_dir=str(tmp_path))

@@ -222,3 +222,32 @@ def test_two_ranks_equal_serial(cells, scenes_dir, out_dir, tmp_path):
             assert p[key] == pytest.approx(s[key], rel=1e-8, abs=1e-10 * abs(s["plate_fz"])), key
         for key in ("top_uz", "outer_ux", "inner_ux"):
             assert p[key] == pytest.approx(s[key], rel=1e-8, abs=1e-12), key
+
+
+@pytest.mark.parametrize("cells", ["hexahedra", "tetrahedra"])
+def test_friction_with_the_default_tangential_penalty_converges_without_chatter(cells, scenes_dir, tmp_path):
+    """μ = 0.3 on the plate and eps_t left at its default (automatic, 10 G / h): the four steps converge
+    at the first try, none in more than 10 Newton iterations (with ε_T = ε_N the tetrahedra took 178
+    load steps, docs/robustness.md §2), some points slip on the way, and at the end every point is on or
+    inside the Coulomb cone, on it where it slips."""
+    import numpy as np
+
+    from hypercontact.contact import SLIP, STICK
+
+    data = scene.load(scenes_dir / "oring_plates.toml",
+                      ["mesh.n=4", "mesh.m=4", f"mesh.cells={cells}", "contact.0.motion=[0.0, 0.0, -0.36]",
+                       "contact.0.mu=0.3", "steps.initial=0.25", "steps.max=0.25", "output.xdmf=false",
+                       f"output.dir={tmp_path}"])
+    sim = Simulation(data, MPI.COMM_SELF, log=quiet)
+    steps = sim.run(out_dir=str(tmp_path)).steps
+    assert [round(s["load_factor"], 9) for s in steps] == [0.25, 0.5, 0.75, 1.0]
+    assert max(s["newton_iterations"] for s in steps) <= 10, [s["newton_iterations"] for s in steps]
+    c = sim.contacts[0]
+    assert c.law.eps_t < c.eps_n / 10
+    state = c.law.committed
+    status, p = np.asarray(state.state), np.asarray(c.evaluate(sim.u).pressure)
+    t = np.linalg.norm(np.asarray(state.traction), axis=1)
+    slip, stick = status == SLIP, status == STICK
+    assert stick.any() and any(s["plate_slip_nodes"] > 0 for s in steps)  # points slipped on the way
+    assert np.allclose(t[slip], 0.3 * p[slip], rtol=1e-9, atol=1e-12)
+    assert np.all(t[stick] <= 0.3 * p[stick] * (1 + 1e-9) + 1e-12)

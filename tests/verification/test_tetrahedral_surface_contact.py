@@ -104,7 +104,7 @@ def test_assembled_jacobian_with_friction_on_triangle_masters(tmp_path):
     msh = tmp_path / "stack.msh"
     write_stack_msh(msh)
     s = stack_scene(tmp_path, msh)
-    s["contact"][2]["mu"] = 0.3
+    s["contact"][2].update(mu=0.3, eps_t=EPS)  # stiff enough for the sideways motion to make points slip
     sim = Simulation(scene.load(s), MPI.COMM_SELF, log=quiet)
     sim.run()
     err, scale = sliding_jacobian_error(sim)

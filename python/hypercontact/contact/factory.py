@@ -41,6 +41,24 @@ def _penalty(entry, slave_tag, material_of, V, facet_tags):
     return eps, f"{entry['name']}: ε_N = {eps:.4g} = {entry['penalty_factor']:g} × M {M:.4g} / h {h:.4g}"
 
 
+def _tangential_penalty(entry, slave_tag, material_of, V, facet_tags, eps_n, mu_max):
+    """(ε_T, note): the scene's ε_T, or min(10 G / h, ε_N) when it is 0 and the contact has friction
+    somewhere on its path (penalty.py); ε_N for a law without a known small-strain shear modulus."""
+    if entry["eps_t"] != 0:
+        return float(entry["eps_t"]), None
+    if mu_max == 0:
+        return eps_n, None
+    material = material_of(entry["surface"])
+    try:
+        eps, G, h = penalty.automatic_tangential_penalty(material["law"], material["parameters"], V,
+                                                         facet_tags, slave_tag)
+    except ValueError:
+        return eps_n, f"{entry['name']}: ε_T = ε_N (no small-strain shear modulus for this law: set eps_t)"
+    if eps >= eps_n:
+        return eps_n, f"{entry['name']}: ε_T = ε_N = {eps_n:.4g} (≤ {penalty.TANGENTIAL_FACTOR:g} × G / h)"
+    return eps, f"{entry['name']}: ε_T = {eps:.4g} = {penalty.TANGENTIAL_FACTOR:g} × G {G:.4g} / h {h:.4g}"
+
+
 def _gap_tolerance(entry, V, facet_tags, slave_tags):
     """The augmented Lagrangian's tolerance: the scene's, or 1e-3 of the first element layer."""
     if entry["enforcement"] != "augmented_lagrangian":
@@ -94,8 +112,10 @@ def build_contacts(scene, V, facet_tags, tag_of, constrained, material_of, path,
             if entry["passes"] == 2:  # two-pass: each surface is slave once (frictionless)
                 pairs.append((f"{entry['name']}_pass2", masters, [slave]))
         gap_tolerance = _gap_tolerance(entry, V, facet_tags, [slave])
+        eps_t, note_t = _tangential_penalty(entry, slave, material_of, V, facet_tags, eps_n, path.max_mu(i))
+        note = "; ".join(x for x in (note, note_t) if x) or None
         for k, (name, slaves, masters) in enumerate(pairs):
-            s = ContactSettings(name, eps_n, float(entry["eps_t"] or eps_n), gap_tolerance,
+            s = ContactSettings(name, eps_n, eps_t, gap_tolerance,
                                 penalty.smoothing_band(entry, V, facet_tags, slaves), note if k == 0 else None)
             contact = _make(entry, s, V, facet_tags, slaves, masters, constrained, k > 0, path.max_mu(i), u_dofs,
                             u_global)

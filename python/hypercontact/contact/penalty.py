@@ -24,6 +24,21 @@ iterations per step, docs/verification.md §13). The two agree at ν = 0
 (2μ) and differ by 1.2× at ν = 0.3; only a thin layer confined under a
 broad contact is stiffer than E*, by up to (K + 4/3 μ)/E*: there the
 penetration's share grows by that factor (penalty_factor is the knob).
+
+The tangential penalty of Coulomb friction, when the scene leaves ``eps_t``
+at 0, is
+
+    ε_T = min(10 · G / h, ε_N),
+
+G the slave body's small-strain shear modulus and h the same layer
+thickness: the shear stiffness of that layer over a tenth of its thickness.
+A sticking point then moves elastically by μ p_N / ε_T = h · μ p_N / (10 G),
+3 % of the first layer for rubber pressed to p_N ≈ G at μ = 0.3, falling
+with h under refinement. With ε_T = ε_N (about 400 G/h for rubber, the
+default before) the band in which a point sticks, 2 μ p_N / ε_T wide, is
+narrower than the tangential part of a Newton correction and the stick/slip
+status chatters: the O-ring of P2–P1 tetrahedra took 178 load steps
+instead of 4 (docs/robustness.md §2, which measures what each choice costs).
 """
 import numpy as np
 import ufl
@@ -86,3 +101,14 @@ def automatic_penalty(factor, law, params, V, facet_tags, tag):
     M = indentation_modulus(law, params)
     h = layer_thickness(V, facet_tags, tag)
     return factor * M / h, M, h
+
+
+#: ε_T = TANGENTIAL_FACTOR × G / h when a frictional contact leaves eps_t at 0 (see the module docstring)
+TANGENTIAL_FACTOR = 10.0
+
+
+def automatic_tangential_penalty(law, params, V, facet_tags, tag):
+    """(10 G / h, G, h) for a slave surface (see the module docstring; the caller caps it at ε_N)."""
+    _, G = small_strain_moduli(law, params)
+    h = layer_thickness(V, facet_tags, tag)
+    return TANGENTIAL_FACTOR * G / h, G, h

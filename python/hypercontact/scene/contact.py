@@ -42,7 +42,7 @@ class Contact(SceneModel):
     smoothing: number(NON_NEGATIVE, (lambda x: x <= 0.1, "at most 0.1")) = 1e-6
     max_augmentations: integer(from_to(1, 1000)) = 20
     mu: number(NON_NEGATIVE, (lambda x: x <= 1e3, "at most 1000")) = 0.0
-    eps_t: _penalty("0 (= eps_n)") = 0.0
+    eps_t: _penalty("0 (automatic: min(10 G / h, eps_n))") = 0.0
     #: false: the pair starts switched off (a phase switches it on: phase[k].contact.<name>.active)
     active: Boolean = True
 
