@@ -189,14 +189,13 @@ def test_the_builder_leaves_gmsh_options_as_it_found_them():
     assert {k: gmsh.option.getNumber(k) for k in keys} == before
 
 
-def squeeze_run(scenes_dir, out, comm, cells):
-    """The O-ring, n = m = 4, squeezed 18 % in four steps against a plate with Coulomb friction (μ = 0.3,
-    ε_T = 10 as the friction scenes choose it): curved second-order cells, quadratic slave nodes or
-    Gauss points of 6-node triangles, stick and slip."""
+def squeeze_run(scenes_dir, out, comm, cells, *overrides):
+    """The O-ring, n = m = 4, squeezed 18 % in four steps against a plate with Coulomb friction (μ = 0.3):
+    curved second-order cells, quadratic slave nodes or Gauss points of 6-node triangles, stick and slip."""
     data = scene.load(scenes_dir / "oring_plates.toml",
                       ["mesh.n=4", "mesh.m=4", f"mesh.cells={cells}", "contact.0.motion=[0.0, 0.0, -0.36]",
-                       "contact.0.mu=0.3", "contact.0.eps_t=10.0", "steps.initial=0.25", "steps.max=0.25",
-                       "output.xdmf=false", f"output.dir={out}"])
+                       "contact.0.mu=0.3", "steps.initial=0.25", "steps.max=0.25", "output.xdmf=false",
+                       f"output.dir={out}", *overrides])
     sim = Simulation(data, comm, log=quiet)
     writer = sim.run(out_dir=str(out))
     return sim, writer.steps
@@ -209,8 +208,8 @@ def test_two_ranks_equal_serial(cells, scenes_dir, out_dir, tmp_path):
     sticking and slipping counts and the probes' displacements."""
     if MPI.COMM_WORLD.size < 2:
         pytest.skip("needs mpirun -n 2")
-    par_sim, par = squeeze_run(scenes_dir, out_dir, MPI.COMM_WORLD, cells)
-    ser_sim, ser = squeeze_run(scenes_dir, tmp_path / "serial", MPI.COMM_SELF, cells)
+    par_sim, par = squeeze_run(scenes_dir, out_dir, MPI.COMM_WORLD, cells, "contact.0.eps_t=10.0")
+    ser_sim, ser = squeeze_run(scenes_dir, tmp_path / "serial", MPI.COMM_SELF, cells, "contact.0.eps_t=10.0")
     assert dfx.num_global_dofs(par_sim.w.function_space) == dfx.num_global_dofs(ser_sim.w.function_space)
     assert len(par) == len(ser) == 4
     assert any(s["plate_slip_nodes"] > 0 for s in ser) and any(s["plate_stick_nodes"] > 0 for s in ser)
@@ -234,12 +233,7 @@ def test_friction_with_the_default_tangential_penalty_converges_without_chatter(
 
     from hypercontact.contact import SLIP, STICK
 
-    data = scene.load(scenes_dir / "oring_plates.toml",
-                      ["mesh.n=4", "mesh.m=4", f"mesh.cells={cells}", "contact.0.motion=[0.0, 0.0, -0.36]",
-                       "contact.0.mu=0.3", "steps.initial=0.25", "steps.max=0.25", "output.xdmf=false",
-                       f"output.dir={tmp_path}"])
-    sim = Simulation(data, MPI.COMM_SELF, log=quiet)
-    steps = sim.run(out_dir=str(tmp_path)).steps
+    sim, steps = squeeze_run(scenes_dir, tmp_path, MPI.COMM_SELF, cells)
     assert [round(s["load_factor"], 9) for s in steps] == [0.25, 0.5, 0.75, 1.0]
     assert max(s["newton_iterations"] for s in steps) <= 10, [s["newton_iterations"] for s in steps]
     c = sim.contacts[0]
