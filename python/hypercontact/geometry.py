@@ -345,6 +345,19 @@ def _builder_arrays(spec):
     return x, hexes, ["body"] * len(hexes), quads, [names[t] for t in quad_tags]
 
 
+def _drop_unused_nodes(x, cells, facets):
+    """The nodes no cell uses (gmsh keeps the geometry's points, e.g. the shell
+    octant's centre) removed and the others renumbered: dolfinx's
+    distribution of the facet tags fails (std::bad_alloc) on a mesh of several
+    bodies when one leaves a node unused before the next body's nodes."""
+    used = np.zeros(len(x), dtype=bool)
+    used[np.asarray(cells).ravel()] = True
+    if used.all():
+        return x, cells, facets
+    new = np.cumsum(used) - 1
+    return x[used], new[cells], new[facets]
+
+
 def build_bodies(comm, parts):
     """Several bodies in one mesh, sharing no node: ``parts`` is a list of
     (name, mesh spec); the first body's surfaces keep their plain names
@@ -359,6 +372,7 @@ def build_bodies(comm, parts):
             offset = 0
             for k, (name, spec) in enumerate(parts):
                 xb, cb, _, fb, fnames = _builder_arrays(spec)
+                xb, cb, fb = _drop_unused_nodes(xb, cb, fb)
                 prefix = "" if k == 0 else f"{name}."
                 for fn in fnames:
                     surfaces.setdefault(prefix + fn, len(surfaces) + 1)
