@@ -318,8 +318,8 @@ def test_tangent_of_the_bordered_system_with_sliding_contact(runs, tmp_path, mon
     checked = []
     original = path_following.continuation_step
 
-    def step(bordered, constraint, x, lam, du_prev, set_load_factor, *args):
-        Du, dlam, its, norms = original(bordered, constraint, x, lam, du_prev, set_load_factor, *args)
+    def step(bordered, constraint, x, lam, du_prev, set_load_factor, *args, **kwargs):
+        Du, dlam, its, norms = original(bordered, constraint, x, lam, du_prev, set_load_factor, *args, **kwargs)
         c = sim.contacts[0]
         if not checked and np.count_nonzero(np.asarray(c.evaluate(sim.u).state) == SLIP) >= 2:
             problem = sim.problem
@@ -375,19 +375,21 @@ def test_a_cut_back_leaves_no_trace_in_the_friction_history(tmp_path, monkeypatc
             assert np.array_equal(c.law.history.positions, before[0]) and np.array_equal(c.law.history.traction, before[1])
             assert (c.law.dissipation, c.law.history.lam_committed) == before[2:]
 
-    def failing(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it):
+    def failing(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it, **kw):
         calls["n"] += 1
         if calls["n"] == target:
             with pytest.raises(ContinuationFailure):
-                untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, 1e-30, 0.0, 2))
+                untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, 1e-30, 0.0, 2, **kw))
             raise ContinuationFailure("forced by the test")
-        return untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it))
+        return untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it,
+                                          **kw))
 
-    def halved(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it):
+    def halved(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it, **kw):
         calls["n"] += 1
         if calls["n"] == target:
             constraint.scale(0.5)
-        return untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it))
+        return untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it,
+                                          **kw))
 
     ends = []
     for name, wrapper in (("failing", failing), ("halved", halved)):
@@ -415,16 +417,4 @@ def test_augmented_lagrangian_with_continuation_is_refused():
     data = sphere_plane()
     data["contact"][0]["enforcement"] = "augmented_lagrangian"
     with pytest.raises(scene.SceneError, match=r"contact\[0\]\.enforcement"):
-        scene.load(data)
-
-
-def test_deformable_master_with_continuation_is_refused():
-    """The deformable contact's search runs between load-control steps only:
-    arc length against obstacle = "surface" is refused, naming the key."""
-    data = sphere_plane()
-    contact = data["contact"][0]
-    for key in ("point", "normal"):
-        contact.pop(key, None)
-    contact.update(obstacle="surface", master="inner")
-    with pytest.raises(scene.SceneError, match=r"contact\[0\]\.obstacle.*deformable master"):
         scene.load(data)

@@ -93,14 +93,12 @@ RULES = [
     # probes of a built box or shell lie in the body
     ("punch", {"output.probes.edge": [40.0, 0.0, 10.5]}, "output.probes.edge", "is outside the body"),
     ("sphere", {"output.probes.pole": [0.0, 0.0, 97.0]}, "output.probes.pole", "is outside the body"),
-    # continuation: a stop probe and a load; nothing moved, searched or augmented between its steps
+    # continuation: a stop probe and a load; nothing moved or augmented between its steps
     ("sphere", {"steps.stop_probe": "top"}, "steps.stop_probe", "arclength control needs a probe"),
     ("sphere", {"pressure": []}, "steps.control", "needs a load"),
     ("sphere", {"pressure.0.value": 0.0}, "pressure[0].value", "needs a non-zero load"),
     ("punch", {"steps.control": "displacement", "steps.stop_probe": "edge",
                "traction": [{"surface": "xmax", "value": [1.0, 0.0, 0.0]}]}, "steps.control", "moving obstacles"),
-    ("blocks", {"steps.control": "arclength", "steps.stop_probe": "corner"}, "contact[0].obstacle",
-     "deformable master"),
     ("sphere", {"contact": [{"name": "wall", "surface": "outer", "obstacle": "plane", "point": [116.0, 0.0, 0.0],
                              "normal": [-1.0, 0.0, 0.0], "eps_n": 10.0, "enforcement": "augmented_lagrangian"}]},
      "contact[0].enforcement", 'use "penalty"'),

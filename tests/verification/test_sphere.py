@@ -49,11 +49,14 @@ def test_limit_point_matches_1d_oracle(K, formulation, reach, out_dir):
         f"material.parameters.K={K}", f"discretisation.formulation={formulation}", "steps.max=0.15",
         f"steps.stop_value={reach * u_ref}"])
     assert len(writer.limit_points) == 1
-    u_max, p_max = vertex(u, p)
+    limit = writer.limit_points[0]
+    assert limit["located"]
+    p_max, u_max = 0.01 * limit["load_factor"], limit["probes"]["equator"][0]
     assert p_max == pytest.approx(p_ref, rel=0.01)
     assert u_max == pytest.approx(u_ref, rel=0.01)
-    # the detected turning point is the computed maximum
-    assert writer.limit_points[0]["load_factor"] == pytest.approx(p.max() / 0.01, rel=1e-12)
+    # the turn was detected at the computed maximum, and located at or above it
+    assert limit["sampled_load_factor"] == pytest.approx(p.max() / 0.01, rel=1e-12)
+    assert p_max >= p.max()
     # every computed point lies on the oracle's curve, before and after the maximum
     assert np.max(np.abs(p / pressure_curve("mooney_rivlin", params, u) - 1)) < 0.01
     assert u[-1] >= reach * u_ref * (1 - 1e-9) and p[-1] < p.max()
@@ -67,6 +70,10 @@ def test_sphere_parallel_equals_serial(out_dir):
     _, w_par, u_par, p_par = run_sphere(MPI.COMM_WORLD, out_dir / "par", coarse)
     _, w_ser, u_ser, p_ser = run_sphere(MPI.COMM_SELF, out_dir / f"ser{MPI.COMM_WORLD.rank}", coarse)
     assert len(w_par.limit_points) == len(w_ser.limit_points) == 1
+    located_par, located_ser = w_par.limit_points[0], w_ser.limit_points[0]
+    assert located_par["located"] and located_ser["located"]
+    assert located_par["load_factor"] == pytest.approx(located_ser["load_factor"], rel=1e-8)
+    assert located_par["probes"]["equator"] == pytest.approx(located_ser["probes"]["equator"], rel=1e-8)
     assert u_par.shape == u_ser.shape
     assert np.max(np.abs(u_par - u_ser)) <= 1e-8 * np.max(np.abs(u_ser))
     assert np.max(np.abs(p_par - p_ser)) <= 1e-8 * np.max(np.abs(p_ser))

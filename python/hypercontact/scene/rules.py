@@ -193,8 +193,9 @@ def continuation_needs_a_stop_probe_and_a_load(s):
 
 
 def continuation_needs_fixed_contacts(s):
-    """The continuation drivers move neither obstacles nor bcs, search no
-    deformable pairing and update no multipliers between their steps."""
+    """The continuation drivers move neither obstacles nor bcs and update no
+    multipliers between their steps (a deformable master's pairing they search
+    at every converged step, as load control does)."""
     control = s.steps.control
     if control == "load":
         return
@@ -208,10 +209,6 @@ def continuation_needs_fixed_contacts(s):
 
 def _continuation_contacts(s, control):
     for i, c in enumerate(s.contact):
-        if isinstance(c, SurfaceContact):
-            raise Invalid(f"{control} control with a deformable master (obstacle = \"surface\") is not supported "
-                          "yet (its contact search runs between the load steps of load control); use load control "
-                          "or a rigid obstacle", ("contact", i, "obstacle"))
         if c.enforcement == "augmented_lagrangian":
             raise Invalid(f"the augmented Lagrangian's updates run between the Newton solves of load control; with "
                           f"{control} control use \"penalty\"", ("contact", i, "enforcement"))

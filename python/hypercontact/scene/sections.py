@@ -102,6 +102,7 @@ class Steps(SceneModel):
     stop_probe: string() = ""
     stop_component: string(one_of(("x", "y", "z"), '"x", "y" or "z"')) = "x"
     stop_value: number() = 1.0
+    locate_limits: Boolean = True
 
     @root_validator(skip_on_failure=True)
     def min_below_initial(cls, values):

@@ -39,6 +39,8 @@ class Bordered:
         self.ksp.setFromOptions()
         b = problem.b
         self.R, self.q, self.t, self.du_R = b.duplicate(), b.duplicate(), b.duplicate(), b.duplicate()
+        self.reference = 0.0  # R_ref of the last step (see step)
+        self.tolerance = 0.0  # the |R| it converged to
 
     def assemble(self, x):
         """R(x), K(x) and q(x) at the current load factor; returns |R|."""
@@ -50,6 +52,11 @@ class Bordered:
                 ql.set(0.0)
             dfx.assemble_vector_into(self.q, self.q_form)
             dfx.zero_bc_rows(self.q, self.bcs)
+        return self.R.norm()
+
+    def residual_norm(self, x):
+        """|R(x)| at the current load factor (residual only)."""
+        self.problem.residual(None, x, self.R)
         return self.R.norm()
 
     def body_residual_norm(self, x):
@@ -140,23 +147,32 @@ class DisplacementConstraint:
         self.size *= factor
 
 
-def step(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it):
+def step(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it, tangent=None,
+         reference=0.0):
     """One continuation step from the converged (x, λ). On success returns
     (Δu, Δλ, iterations, residual norms) and leaves x, λ updated by the caller;
-    raises ContinuationFailure otherwise (x is then unchanged)."""
+    raises ContinuationFailure otherwise (x is then unchanged). ``tangent``:
+    t = −K⁻¹q at (x, λ) when the caller has it (else it is computed here).
+    The step converges at |R| ≤ max(rtol · max(R_ref, |λq|), atol), R_ref the
+    predictor's residual or ``reference`` if larger (a re-solve of a step with
+    a smaller size keeps the tolerance of the step); R_ref is left in
+    ``bordered.reference``."""
     x0 = x.copy()
     try:
-        return _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it)
+        return _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it, tangent,
+                     reference)
     except ContinuationFailure:
         x0.copy(x)
         set_load_factor(lam)
         raise
 
 
-def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it):
+def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol, max_it, tangent, floor):
     set_load_factor(lam)
-    bordered.assemble(x0)
-    t = bordered.tangent_direction()
+    if tangent is None:
+        bordered.assemble(x0)
+        tangent = bordered.tangent_direction()
+    t = tangent
     dlam = constraint.predictor(t, du_prev)
     Du = t.copy()
     Du.scale(dlam)
@@ -176,9 +192,12 @@ def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol
             raise ContinuationFailure(f"residual is not finite at iteration {it}")
         if it == 0 and not bordered.problem.contacts:
             reference = rnorm
+        if it == 0:
+            reference = bordered.reference = max(reference, floor)
         norms.append(rnorm)
         qnorm = bordered.q.norm() * max(abs(lam + dlam), 1e-300)
-        if it > 0 and rnorm <= max(rtol * max(reference, qnorm), atol):
+        bordered.tolerance = max(rtol * max(reference, qnorm), atol)
+        if it > 0 and rnorm <= bordered.tolerance:
             return Du, dlam, it, norms
         if it == max_it:
             break

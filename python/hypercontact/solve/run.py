@@ -58,8 +58,9 @@ class Observers:
                  f"{reached:.4g}  Newton {its:2d}  |R| = {norms[-1]:.2e}{self.run.eta(reached / target)}")
         self.run.save_checkpoint(self.writer, controller, du_prev=du_prev)
 
-    def limit_point(self, after_step, load_factor):
-        self.writer.limit_points.append({"after_step": after_step, "load_factor": load_factor})
+    def limit_point(self, record):
+        """A limit point of the path (continuation): its load factor, where it was found and how."""
+        self.writer.limit_points.append(record)
 
     def failed(self, story):
         if not self.model.path.implicit:
