@@ -255,25 +255,28 @@ def graded_box_arrays(size, n, m, origin, grading):
     xmin … zmax) with graded spacing: per axis, grading g > 1 clusters the
     cells towards the min side (coordinates ∝ t^g), g < −1 towards the max
     side, ±1 is uniform."""
-    axes = []
-    for L, o, k, g in zip(size, origin, (n, n, m), grading):
-        t = np.linspace(0.0, 1.0, k + 1)
-        t = t ** g if g > 0 else 1.0 - (1.0 - t) ** (-g)
-        axes.append(o + L * t)
-    nx, ny, nz = n + 1, n + 1, m + 1
+    return structured_arrays([o + L * _graded(k, g) for L, o, k, g in zip(size, origin, (n, n, m), grading)])
+
+
+def structured_arrays(axes):
+    """Hexahedra of the tensor grid of the coordinate arrays ``axes`` (x, y, z),
+    gmsh node order, boundary quadrilaterals named xmin … zmax: (x, hexes,
+    hex names, quads, quad names)."""
+    n0, n1, n2 = (len(a) - 1 for a in axes)
+    ny, nz = n1 + 1, n2 + 1
     X, Y, Z = np.meshgrid(*axes, indexing="ij")
     x = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
 
     def node(i, j, k):
         return (i * ny + j) * nz + k
 
-    i, j, k = (g.ravel() for g in np.meshgrid(np.arange(n), np.arange(n), np.arange(m), indexing="ij"))
+    i, j, k = (g.ravel() for g in np.meshgrid(np.arange(n0), np.arange(n1), np.arange(n2), indexing="ij"))
     hexes = np.stack([node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
                       node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)],
                      axis=1)
     quads, names = [], []
+    counts = (n0, n1, n2)
     for axis, (a, b) in enumerate([(1, 2), (0, 2), (0, 1)]):
-        counts = (n, n, m)
         p, q = (g.ravel() for g in np.meshgrid(np.arange(counts[a]), np.arange(counts[b]), indexing="ij"))
         for side, index in (("min", 0), ("max", counts[axis])):
             def at(pp, qq):
@@ -283,6 +286,35 @@ def graded_box_arrays(size, n, m, origin, grading):
             quads.append(np.stack([at(p, q), at(p + 1, q), at(p + 1, q + 1), at(p, q + 1)], axis=1))
             names.extend([f"{'xyz'[axis]}{side}"] * len(p))
     return x, hexes, ["body"] * len(hexes), np.concatenate(quads), names
+
+
+#: The tube builder's surfaces: the box's faces in (r, θ, z) and what they become.
+TUBE_SURFACES = {"xmin": "inner", "xmax": "outer", "ymin": "start", "ymax": "end", "zmin": "zmin", "zmax": "zmax"}
+
+
+def _graded(k, g):
+    """k + 1 points on [0, 1]: uniform for g = 1, clustered towards 0 for g > 1 (t^g), towards 1 for g < −1."""
+    t = np.linspace(0.0, 1.0, k + 1)
+    return t ** g if g > 0 else 1.0 - (1.0 - t) ** (-g)
+
+
+def tube_arrays(inner_radius, thickness, length, n, m, layers, angles, grading=(1.0, 1.0, 1.0)):
+    """A sector of a hollow circular cylinder about the z axis, structured
+    hexahedra: radius inner_radius … inner_radius + thickness (m cells), polar
+    angle angles[0] … angles[1] in degrees from +x towards +y (n cells), z
+    from 0 to length (layers cells). The box [r_i, r_o] × [θ0, θ1] × [0, L]
+    mapped by (r, θ, z) → (r cos θ, r sin θ, z), which keeps the hexahedra's
+    orientation. Surfaces "inner", "outer", "start" (θ0), "end" (θ1), "zmin",
+    "zmax"."""
+    axes = [inner_radius + thickness * _graded(m, grading[0]),
+            np.radians(angles[0] + (angles[1] - angles[0]) * _graded(n, grading[1])),
+            length * _graded(layers, grading[2])]
+    rtz, hexes, hex_names, quads, quad_names = structured_arrays(axes)
+    r, t, z = rtz.T
+    x = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
+    # sin and cos of multiples of 90° to the last bit: nodes on x = 0 or y = 0 lie on the plane
+    x[np.abs(x) < 1e-14 * (inner_radius + thickness)] = 0.0
+    return x, hexes, hex_names, quads, [TUBE_SURFACES[q] for q in quad_names]
 
 
 #: The six tetrahedra of a hexahedron (gmsh node order) around its main diagonal 0–6 (Kuhn's split):
@@ -320,6 +352,9 @@ def _builder_arrays(spec):
             return x, hexes, hex_names, quads, quad_names
         tets, triangles = kuhn_tetrahedra(hexes, quads)
         return x, tets, list(np.repeat(hex_names, 6)), triangles, list(np.repeat(quad_names, 2))
+    if spec["builder"] == "tube":
+        return tube_arrays(spec["inner_radius"], spec["thickness"], spec["length"], spec["n"], spec["m"],
+                           spec["layers"], spec["angles"], spec.get("grading", (1.0, 1.0, 1.0)))
     if spec["builder"] == "hemisphere":
         if min(grading) < 1.0:
             raise ValueError(f"hemisphere: grading must be >= 1 (towards the pole), found {grading}")
@@ -412,7 +447,7 @@ def build_mesh(comm, mesh, bodies=()):
                                  f"volume {b['volume']!r} (it has {', '.join(body.regions)})"
                                  + (f"; did you mean '{close[0]}'?" if close else ""))
         return body
-    if bodies or any(g != 1.0 for g in mesh["grading"]):
+    if bodies or any(g != 1.0 for g in mesh["grading"]) or mesh["builder"] == "tube":
         return build_bodies(comm, [("body", mesh)] + [(b["name"], b) for b in bodies])
     if mesh["builder"] == "oring":
         from .oring import oring_model

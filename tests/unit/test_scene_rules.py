@@ -57,7 +57,7 @@ RULES = [
     ("blocks", {**SURFACE_FRICTION, "contact.0.passes": 2}, "contact[0].mu", "needs passes = 1"),
     ("blocks", {**SURFACE_FRICTION, "contact.0.integration": "gauss"}, "contact[0].mu", 'integration = "nodal"'),
     # a deformable master: another surface than the slave, one surface for two passes
-    ("blocks", {"contact.0.master": "top.zmin"}, "contact[0].master", "self-contact is not supported"),
+    ("blocks", {"contact.0.master": "top.zmin+zmax"}, "contact[0].master", "slave surface alone"),
     ("blocks", {"contact.0.master": "zmax+xmax", "contact.0.passes": 2}, "contact[0].passes",
      "single master surface"),
     ("blocks", {"contact.0.master": ""}, "contact[0].master", "needs the master surface's name"),
@@ -112,7 +112,7 @@ RULES = [
     ("punch", {"solver.petsc": {"pc_type": "ilu"}}, "solver.petsc.pc_type", "pc_factor_mat_solver_type"),
     ("punch", {"mesh.builder": "shell_octant", "mesh.n": 5, "output.probes": {}}, "mesh.n", "even n"),
     ("punch", {"mesh.builder": "shell_octant", "mesh.grading": [2.0, 1.0, 1.0], "output.probes": {}},
-     "mesh.grading", "grading applies to the box and hemisphere builders"),
+     "mesh.grading", "grading applies to the box, hemisphere or tube builders"),
     ("blocks", {"body.0.builder": "hemisphere", "body.0.grading": [1.0, 1.0, -2.0]}, "body[0].grading",
      "towards its pole only"),
     ("punch", {"mesh.n": 10**4, "mesh.m": 10}, "mesh.n", "hexahedra, more than 1e+08"),

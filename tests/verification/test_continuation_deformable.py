@@ -11,11 +11,10 @@ import tomllib
 
 import numpy as np
 import pytest
-from conftest import ROOT, quiet
+from conftest import ROOT
 from mpi4py import MPI
 
-from hypercontact import scene
-from hypercontact.simulation import Simulation
+from reference.runs import column, run
 
 STIFF = 1000.0
 
@@ -36,16 +35,6 @@ def sphere_plane(block, mu=0.0):
                    {"surface": "wall.zmin", "fix": ["z"]}]
     data["contact"] = [{"name": "wall", "surface": "outer", "obstacle": "surface", "master": "wall.xmin", "mu": mu}]
     return data
-
-
-def run(data, out, comm=MPI.COMM_SELF):
-    sc = scene.load(data, [f"output.dir={out}"])
-    sim = Simulation(sc, comm, log=quiet)
-    return sim, sim.run()
-
-
-def column(writer, key):
-    return np.array([s[key] for s in writer.steps])
 
 
 @pytest.fixture(scope="module")

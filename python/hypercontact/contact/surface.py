@@ -98,6 +98,8 @@ class SurfacePairing:
         self.num_points = comm.allreduce(len(self.point_area), op=MPI.SUM)
         size = np.linalg.norm(self.X[self.facets[:, 2]] - self.X[self.facets[:, 0]], axis=1).max()
         self.capture = float(capture) if capture > 0 else 1.0 * size
+        #: self-contact (the slave surface is its own master): per contact node, the facets it may not pair with
+        self.excluded = self._self_contact_exclusion(corners) if set(slave_tags) & set(master_tags) else None
         self.candidates = None  # (offsets, indices) of the current pairing: the matrix pattern
         self.extra_nodes = None  # callable: further (point, contact node) couplings (friction history)
         self.repairings = 0
@@ -166,8 +168,43 @@ class SurfacePairing:
 
     # --- pairing and pattern ---------------------------------------------------
     def search(self, x):
-        """Broad phase at contact-node coordinates x: (offsets, indices) of candidate facets."""
-        return _cpp.find_candidates(self.slave_points(x), x, self.facets, self.capture)
+        """Broad phase at contact-node coordinates x: (offsets, indices) of candidate facets
+        (self-contact: without the excluded ones)."""
+        offsets, idx = _cpp.find_candidates(self.slave_points(x), x, self.facets, self.capture)
+        if self.excluded is None or len(idx) == 0:
+            return offsets, idx
+        ring, node_normal, facet_normal = self.excluded
+        point = np.repeat(np.arange(len(self.point_area)), np.diff(offsets))
+        node = self.point_nodes[point, 0]
+        facing = np.einsum("pk,pk->p", node_normal[node], facet_normal[idx]) < 0.0
+        keep = facing & (np.asarray(ring[node, np.array(idx, dtype=np.int64)]).ravel() == 0)
+        counts = np.bincount(point[keep], minlength=len(self.point_area))
+        return np.concatenate([[0], np.cumsum(counts)]).astype(offsets.dtype), np.ascontiguousarray(idx[keep])
+
+    def _self_contact_exclusion(self, corners):
+        """Self-contact: what excludes a (slave node, facet) pair from the search — the facets
+        that touch the node's own facets (its facets and their neighbours, by a shared node: a
+        sparse contact node × facet count), and the facets that do not face the node in the
+        reference configuration (facet normal · the node's normal ≥ 0: a slave point may meet a
+        facet of the same surface only where the surface has folded back onto itself, as the
+        two inner walls of a flattened tube). Returns (ring, node normals, facet normals)."""
+        from scipy import sparse
+
+        n_nodes, n_facets = len(self.X), len(self.facets)
+        rows = self.facets.ravel()
+        cols = np.repeat(np.arange(n_facets), self.facets.shape[1])
+        incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_nodes, n_facets))
+        ring = (incidence @ incidence.T) @ incidence  # node → facets sharing a node with its facets
+        X = self.X
+        c = self.facets[:, :corners]
+        if corners == 4:
+            normal = np.cross(X[c[:, 2]] - X[c[:, 0]], X[c[:, 3]] - X[c[:, 1]])
+        else:
+            normal = np.cross(X[c[:, 1]] - X[c[:, 0]], X[c[:, 2]] - X[c[:, 0]])
+        node_normal = incidence @ normal  # area-weighted sum over the node's facets
+        node_normal /= np.maximum(np.linalg.norm(node_normal, axis=1, keepdims=True), 1e-300)
+        facet_normal = normal / np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-300)
+        return ring.tocsr(), node_normal, facet_normal
 
     def update_pairing(self, u, fresh):
         """With ``fresh`` (a step starts): search at u and make it the pairing.

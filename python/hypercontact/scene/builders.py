@@ -35,6 +35,8 @@ class Builder:
                 volume = share * math.pi ** 3 / 16 * spec["mean_diameter"] * spec["cord_diameter"] ** 2
                 return int(5.4 * volume / (spec["cord_diameter"] / n) ** 3)
             return int(share * 3 * n * n * m / 4)
+        if self.name == "tube":
+            return n * m * spec["layers"]
         return n * n * m * (6 if spec.get("cells") == "tetrahedra" else 1)
 
     def surfaces_of(self, spec):
@@ -53,6 +55,8 @@ BUILDERS = {
     "hemisphere": Builder("hemisphere", {"curved": None, "flat": 2, "xmin": 0, "ymin": 1}, body=True,
                           graded=True),
     "oring": Builder("oring", {"outer": None, "xmin": 0, "ymin": 1, "zmin": 2}, main=True),
+    "tube": Builder("tube", {"inner": None, "outer": None, "start": None, "end": None, "zmin": 2, "zmax": 2},
+                    main=True, graded=True),
     "file": Builder("file", main=True),
 }
 #: What the box builder's cells may be (mesh.cells).
@@ -76,7 +80,7 @@ def check_shape(spec):
     if builder.surfaces is None:
         return
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
-        raise Invalid(f"grading applies to the {' and '.join(n for n, b in BUILDERS.items() if b.graded)} "
+        raise Invalid(f"grading applies to the {choices(n for n, b in BUILDERS.items() if b.graded).replace(chr(34), '')} "
                       f"builders, not {builder.name!r}", "grading")
     if spec.get("order", 1) != 1 and builder.name != "oring":
         raise Invalid(f"order applies to the oring builder, not {builder.name!r} (a second-order mesh of another "
@@ -85,7 +89,7 @@ def check_shape(spec):
         raise Invalid(f"cells = {spec['cells']!r} applies to the box and oring builders, not {builder.name!r}",
                       "cells")
     {"box": _check_box, "shell_octant": _check_shell, "hemisphere": _check_hemisphere,
-     "oring": _check_oring}[builder.name](spec)
+     "oring": _check_oring, "tube": _check_tube}[builder.name](spec)
     cells = builder.cells(spec)
     if cells > MAX_CELLS:
         kind = "tetrahedra" if spec.get("cells") == "tetrahedra" else "hexahedra"
@@ -116,6 +120,15 @@ def _check_hemisphere(spec):
     if min(spec["grading"]) < 1.0:
         raise Invalid(f"the hemisphere's grading clusters cells towards its pole only: expected numbers >= 1, "
                       f"found {spec['grading']}", "grading")
+
+
+def _check_tube(spec):
+    start, end = spec["angles"]
+    if not 0.0 < end - start <= 180.0:
+        raise Invalid(f"expected a sector of more than 0° and at most 180° (angles[1] − angles[0]; a larger "
+                      f"tube is two halves joined by symmetry or contact), found {start:g}° to {end:g}°",
+                      "angles")
+    _check_shell(dict(spec, n=2))
 
 
 def _check_oring(spec):

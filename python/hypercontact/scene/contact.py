@@ -170,8 +170,17 @@ class SurfaceContact(Contact):
         if not master:
             raise Invalid(cls.missing["master"], "master")
         if slave in master.split("+"):
-            raise Invalid(f"the master surface must differ from the slave surface ({slave!r}); self-contact is not "
-                          "supported", "master")
+            if master != slave:
+                raise Invalid(f"self-contact takes the slave surface alone as its master (master = {slave!r}), "
+                              f"found {master!r}", "master")
+            if values["passes"] == 2:
+                raise Invalid("self-contact is two-sided already (every node of the surface is a slave point "
+                              "against the surface's other facets): passes = 1", "passes")
+            if values["integration"] != "nodal":
+                raise Invalid('self-contact excludes each slave node\'s own facets and their neighbours: it needs '
+                              'integration = "nodal"', "integration")
+            if values["mu"] > 0:
+                raise Invalid("self-contact is frictionless for now (mu = 0)", "mu")
         if values["passes"] == 2 and "+" in master:
             raise Invalid("two-pass contact needs a single master surface (one name, no '+')", "passes")
         if values["mu"] > 0 and (values["passes"] == 2 or values["integration"] == "gauss"):

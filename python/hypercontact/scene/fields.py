@@ -143,6 +143,19 @@ class Vector(Checked):
     convert = staticmethod(_finite_floats)
 
 
+def _finite_pair(value):
+    if not all(math.isfinite(v) for v in value):
+        raise Invalid(f"expected a list of two finite numbers, found {describe(value)}")
+    return [float(v) for v in value]
+
+
+class Pair(Checked):
+    what = "a list of two numbers"
+    json_schema = {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}
+    accepts = staticmethod(lambda x: isinstance(x, list) and len(x) == 2 and all(is_number(v) for v in x))
+    convert = staticmethod(_finite_pair)
+
+
 class Strings(Checked):
     what, json_schema = "a list of strings", {"type": "array", "items": {"type": "string"}}
     accepts = staticmethod(lambda x: isinstance(x, list) and all(isinstance(v, str) for v in x))
@@ -171,6 +184,10 @@ def string(*checks):
 
 def vector(*checks):
     return _with(Vector, checks)
+
+
+def pair(*checks):
+    return _with(Pair, checks)
 
 
 def strings(*checks):

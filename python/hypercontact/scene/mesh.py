@@ -9,7 +9,7 @@ from .base import SceneModel
 from .builders import BODY_BUILDERS, CELL_KINDS, MESH_BUILDERS, check_shape, choices
 from .errors import Invalid, printable
 from .fields import (ALL_POSITIVE, COORDINATES, FILE_NAME, GRADING, LENGTH, NON_NEGATIVE, POSITIVE, from_to,
-                     integer, number, one_of, string, vector)
+                     integer, number, one_of, pair, string, vector)
 from .material import Material
 from .paths import existing_file
 
@@ -38,6 +38,11 @@ class Mesh(SceneModel):
     cross_section: string(one_of(("half", "full"), '"half" or "full"')) = "half"
     #: the oring builder's geometry: 1 (straight-sided cells) or 2 (second-order cells on the torus)
     order: integer(from_to(1, 2, "1 or 2")) = 1
+    #: the tube builder (hollow cylinder about z, inner_radius and thickness as the shell's): its length
+    #: along z in `layers` cells, and the polar angles in degrees (from +x towards +y) of its sector
+    length: number(POSITIVE, LENGTH) = 1.0
+    layers: integer(POSITIVE) = 1
+    angles: pair() = [0.0, 90.0]
     file: string(FILE_NAME) = ""
     #: random node displacements of this fraction of the smallest cell's size (fixed per node):
     #: a check that results move continuously with the data, not a modelling feature
