@@ -4,6 +4,7 @@ the time split per Newton iteration.
 
     .venv/bin/python bench/hertz.py --level coarse        # one level → results/hertz_<level>.json
     .venv/bin/python bench/hertz.py --report              # the JSONs → bench/results/hertz.md + .png
+    .venv/bin/python bench/hertz.py --pole                # single pass against two-pass at the pole
 
 Levels scale the cell counts of both bodies (block n × n × m, ball n, m):
 coarse 8/8 + 6/6, medium 12/12 + 9/9, default 16/16 + 12/12 (the scene), fine 22/22 + 16/16
@@ -263,6 +264,65 @@ def plot(rows):
     fig.savefig(RESULTS / "hertz.png")
 
 
+def pole_study():
+    """The pole's pressure on the default mesh, single pass against two-pass (the traction of
+    all passes at the ball's slave nodes, hypercontact.hertz.vertical_tractions), and in the
+    single-pass solution the block's surface nodes that lie inside the ball (the second
+    pass's gaps evaluated there without applying them) → bench/results/hertz_pole.md."""
+    from hypercontact import scene
+    from hypercontact.hertz import fit_profile, vertical_tractions
+    from hypercontact.simulation import Simulation
+
+    import tempfile
+
+    work = Path(tempfile.mkdtemp(prefix="hertz_pole_"))
+    rows, single = [], None
+    for passes in (1, 2):
+        t0 = time.perf_counter()
+        sim, writer = run(*LEVELS["default"], work / f"p{passes}", MPI.COMM_SELF, extra=[f"contact.0.passes={passes}"])
+        wall = time.perf_counter() - t0
+        X, x, t = vertical_tractions(sim, "hertz")
+        # the block's force on the ball: the first pass's, less the second pass's (the ball on the block)
+        F = 4.0 * sum(float(c.force(sim.u)[2]) * (1 if c.name == "hertz" else -1) for c in sim.contacts)
+        r, R0 = np.hypot(x[:, 0], x[:, 1]), np.hypot(X[:, 0], X[:, 1])
+        pole = int(np.argmin(R0))
+        closed = np.isfinite(t) & (t > 0)
+        a_fit, p0_fit = fit_profile(r, t, closed)
+        a_H, p0_H, _ = hertz(abs(F))
+        rows.append(dict(passes=passes, F=F, p0_H=p0_H, pole=float(t[pole]), p0_fit=p0_fit, a_fit=a_fit, a_H=a_H,
+                         closed=int(closed.sum()), newton=sum(s["newton_iterations"] for s in writer.steps),
+                         steps=len(writer.steps), wall=wall))
+        if passes == 1:
+            single = sim
+    # the single-pass solution seen by a second pass: block nodes inside the ball's facets
+    sc = scene.load(ROOT / "scenes" / "hertz.toml", overrides(*LEVELS["default"]) +
+                    ["output.xdmf=false", "contact.0.passes=2", f"output.dir={work / 'probe'}"])
+    probe = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: None)
+    probe.u.x.array[:] = single.u.x.array
+    probe.model.update_pairing(True)
+    second = probe.contacts[1]
+    gap = np.asarray(second.evaluate(probe.u).gap)
+    Xb = second.geometry.X[second.geometry.point_nodes[:, 0]]
+    inside = gap < 0
+    ball_gap = np.asarray(single.contacts[0].evaluate(single.u).gap)
+    lines = ["| passes | F (N) | p0_H (MPa) | pole traction | err | p0_fit | err | a_fit (mm) | err | closed ball nodes | "
+             "steps | Newton its | wall (s) |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for q in rows:
+        lines.append(f"| {q['passes']} | {q['F']:.4f} | {q['p0_H']:.4f} | {q['pole']:.4f} | "
+                     f"{100 * (q['pole'] / q['p0_H'] - 1):+.1f} % | {q['p0_fit']:.4f} | "
+                     f"{100 * (q['p0_fit'] / q['p0_H'] - 1):+.1f} % | {q['a_fit']:.4f} | "
+                     f"{100 * (q['a_fit'] / q['a_H'] - 1):+.1f} % | {q['closed']} | {q['steps']} | {q['newton']} | "
+                     f"{q['wall']:.0f} |")
+    lines += ["", f"Single pass, the block's top-surface nodes inside the ball's facets: {int(inside.sum())} "
+              f"(all within r = {np.hypot(Xb[inside, 0], Xb[inside, 1]).max():.3f} mm of the pole), the deepest "
+              f"{-gap.min():.2e} mm; the ball's nodes' deepest penetration into the block {-ball_gap.min():.2e} mm. "
+              "Slave (ball) node spacing at the pole "
+              f"{np.sort(np.hypot(*single.contacts[0].geometry.X[single.contacts[0].geometry.point_nodes[:, 0]][:, :2].T))[1]:.3f} mm, "
+              f"master (block) {np.sort(np.unique(np.round(np.hypot(Xb[:, 0], Xb[:, 1]), 6)))[1]:.3f} mm."]
+    (RESULTS / "hertz_pole.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
 def main():
     import logging
 
@@ -270,7 +330,11 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--level", choices=list(LEVELS), action="append", default=[])
     p.add_argument("--report", action="store_true")
+    p.add_argument("--pole", action="store_true", help="the pole's pressure, single pass against two-pass "
+                                                       "→ bench/results/hertz_pole.md")
     args = p.parse_args()
+    if args.pole:
+        pole_study()
     for name in args.level:
         bench_level(name)
     if args.report and MPI.COMM_WORLD.rank == 0:

@@ -96,6 +96,40 @@ def slave_points(contact, u):
     return tuple(np.concatenate([q[i] for q in parts]) for i in range(4))
 
 
+def vertical_tractions(sim, name):
+    """Gathered on every rank: the reference and current coordinates of the first pass's
+    slave points of contact ``name`` (nodal integration) and the vertical traction on each,
+    t_i = −R_z,i / A_i: the z component of the force all passes of the contact put on the
+    slave node (its own penalty force and, two-pass, the second pass's reactions on the
+    facets it belongs to) over the node's reference area. Single pass, t_i = p_i n_z at a
+    closed node; with two passes it is the traction of both, which no pass's pressure is
+    alone. Collective."""
+    from petsc4py import PETSc
+
+    passes = [c for c in sim.contacts if c.name == name or c.name.startswith(name + "_pass")]
+    first = passes[0]
+    g = first.geometry
+    if g.nodes is None:
+        raise ValueError(f"contact {name!r}: tractions at slave nodes need nodal integration")
+    b = sim.problem.b.duplicate()
+    b.zeroEntries()
+    for c in passes:
+        c.prepare(sim.u)
+        c.add_residual(b)
+    b.assemblyBegin()
+    b.assemblyEnd()
+    scatter, whole = PETSc.Scatter.toAll(b)
+    scatter.scatter(b, whole, PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+    values = whole.getArray(readonly=True)
+    dof = g.dofs[g.point_nodes[:, 0], 2]
+    force_z = np.where(dof >= 0, -values[np.maximum(dof, 0)], np.nan)
+    X, x = first.point_coordinates(sim.u)
+    parts = first.comm.allgather((X, x, force_z / g.point_area))
+    for obj in (b, whole, scatter):
+        obj.destroy()
+    return tuple(np.concatenate([q[i] for q in parts]) for i in range(3))
+
+
 def fit_profile(r, p, closed):
     """(a_fit, p0_fit): least squares of p² = p0² − (p0²/a²) r² over the
     closed points."""

@@ -13,7 +13,8 @@ Tolerances (the refinement study is bench/hertz.py → bench/results/hertz.md):
   scene's default mesh (16/16, 12/12), the error shrinking under
   refinement; the test allows 20 %, i.e. the error at this mesh with a
   margin of a quarter of it (the nodal pressure at the pole itself is
-  not asserted: it sits ~25 % low at every level, see the bench).
+  not asserted with a single pass: it sits ~25 % low at every level, see the bench; with
+  two passes it is within 5 %, asserted below).
 """
 import numpy as np
 import pytest
@@ -58,6 +59,47 @@ def test_hertz_peak_pressure_of_the_fitted_profile(coarse):
     a_H, p0_H, _ = H.hertz(F)
     geo = H.contact_radius(X, x, gap, p)
     assert abs(geo["p0_fit"] / p0_H - 1.0) <= 0.20
+
+
+def test_single_pass_traction_is_the_slave_pressure(coarse):
+    """vertical_tractions with one pass: the force on a slave node over its area is
+    its own penalty pressure times the master normal's z component (serial run)."""
+    from hypercontact.hertz import vertical_tractions
+
+    sim, _ = coarse
+    X, x, gap, p, _ = H.slave_profile(sim)
+    X_t, _, t = vertical_tractions(sim, "hertz")
+    assert np.array_equal(X, X_t)
+    state = sim.contacts[0].evaluate(sim.u)
+    n_z = np.asarray(state.normal)[:, 2]
+    face = np.asarray(state.feature) == 0
+    closed = (gap < 0) & face
+    assert closed.sum() >= 10
+    assert np.allclose(t[closed], p[closed] * n_z[closed], rtol=1e-9, atol=0)
+    pole = int(np.argmin(np.hypot(X[:, 0], X[:, 1])))
+    assert closed[pole] and t[pole] == pytest.approx(p[pole], rel=1e-3)
+    assert np.all(np.abs(t[(gap > 0) & np.isfinite(t)]) <= 1e-12)
+
+
+@pytest.mark.slow
+def test_two_pass_pole_pressure_within_five_percent_on_the_default_mesh(tmp_path):
+    """Single pass, the pole node's pressure is ~24 % below Hertz's p0 at every level
+    (bench/results/hertz.md): the block's surface, finer than the ball's at the pole, has nodes
+    inside the ball's facets that no slave point holds (bench/results/hertz_pole.md). With
+    two passes the block's nodes are slave points too, and the traction at the ball's pole
+    node from both passes is within 5 % of p0 at the run's force, on the scene's default mesh."""
+    from hypercontact.hertz import vertical_tractions
+
+    sim, writer = H.run(*H.LEVELS["default"], tmp_path, MPI.COMM_SELF, extra=["contact.0.passes=2"])
+    assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
+    X, _, t = vertical_tractions(sim, "hertz")
+    F = 4.0 * sum(float(c.force(sim.u)[2]) * (1 if c.name == "hertz" else -1) for c in sim.contacts)
+    _, p0_H, _ = H.hertz(F)
+    pole = int(np.argmin(np.hypot(X[:, 0], X[:, 1])))
+    assert t[pole] == pytest.approx(p0_H, rel=0.05)
+    # the second pass carries part of it: the first pass's own pressure at the pole is far below
+    p_first = np.asarray(sim.contacts[0].evaluate(sim.u).pressure)
+    assert p_first[pole] < 0.6 * t[pole]
 
 
 @pytest.mark.mpi
