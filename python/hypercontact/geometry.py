@@ -250,12 +250,26 @@ def hemisphere_arrays(radius, n, m, center=(0.0, 0.0, 0.0), grading=(1.0, 1.0)):
     return X, hexes, ["body"] * len(hexes), np.concatenate(quads), names
 
 
-def graded_box_arrays(size, n, m, origin, grading):
+def graded_box_arrays(size, n, m, origin, grading, focus=None):
     """A structured box like :func:`box_model` (n × n × m cells, surfaces
     xmin … zmax) with graded spacing: per axis, grading g > 1 clusters the
     cells towards the min side (coordinates ∝ t^g), g < −1 towards the max
-    side, ±1 is uniform."""
-    return structured_arrays([o + L * _graded(k, g) for L, o, k, g in zip(size, origin, (n, n, m), grading)])
+    side, ±1 is uniform. With ``focus`` (a point), an axis with |g| > 1
+    clusters them towards the focus's coordinate instead: from both sides if
+    it lies inside the box (round(k c / L) of the k cells on the side below,
+    c its distance from the min side), else towards the side it lies on."""
+    axes = []
+    for axis, (L, o, k, g) in enumerate(zip(size, origin, (n, n, m), grading)):
+        c = None if focus is None or abs(g) == 1.0 else focus[axis] - o
+        if c is None:
+            axes.append(o + L * _graded(k, g))
+        elif c <= 0.0 or c >= L:
+            axes.append(o + L * _graded(k, abs(g) if c <= 0.0 else -abs(g)))
+        else:
+            below = int(min(max(round(k * c / L), 1), k - 1))
+            axes.append(o + np.concatenate([c * _graded(below, -abs(g)),
+                                            c + (L - c) * _graded(k - below, abs(g))[1:]]))
+    return structured_arrays(axes)
 
 
 def structured_arrays(axes):
@@ -347,7 +361,7 @@ def _builder_arrays(spec):
     grading = spec.get("grading", (1.0, 1.0, 1.0))
     if spec["builder"] == "box" and any(g != 1.0 for g in grading):
         x, hexes, hex_names, quads, quad_names = graded_box_arrays(spec["size"], spec["n"], spec["m"],
-                                                                   spec["origin"], grading)
+                                                                   spec["origin"], grading, spec.get("focus"))
         if spec.get("cells", "hexahedra") == "hexahedra":
             return x, hexes, hex_names, quads, quad_names
         tets, triangles = kuhn_tetrahedra(hexes, quads)

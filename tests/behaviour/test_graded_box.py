@@ -75,3 +75,40 @@ def test_graded_box_volume_surfaces_and_conformity(cells):
     x = mesh.geometry.x
     assert mesh.comm.allreduce(float(np.min(np.where(x[:, 0] > ORIGIN[0], x[:, 0], np.inf)) - ORIGIN[0])
                                if len(x) else np.inf, op=MPI.MIN) == pytest.approx(SIZE[0] / N ** 3)
+
+
+def test_a_focus_inside_the_box_clusters_the_cells_from_both_sides():
+    """focus = the punch's edge (x = y = 20 on a 40 mm plate), grading 2 on x, y and
+    towards the top (z = 10, on the box): the focus's coordinate is a grid line, the
+    spacing is smallest on both sides of it and grows monotonically away (both
+    halves map t² onto their side), the cells fill the box."""
+    x, hexes, _, quads, _ = graded_box_arrays([40.0, 40.0, 10.0], 8, 4, [0.0, 0.0, 0.0], [2.0, 2.0, 2.0],
+                                              focus=[20.0, 20.0, 10.0])
+    for axis, k, c, L in ((0, 8, 20.0, 40.0), (1, 8, 20.0, 40.0), (2, 4, 10.0, 10.0)):
+        lines = np.unique(x[:, axis])
+        assert len(lines) == k + 1 and lines[0] == 0.0 and lines[-1] == L
+        h = np.diff(lines)
+        if c < L:
+            i = int(np.flatnonzero(lines == c)[0])
+            assert i == k // 2  # round(k c / L) cells below the focus
+            assert np.all(np.diff(h[:i]) < 0) and np.all(np.diff(h[i:]) > 0)
+            assert h[i - 1] == pytest.approx(h[i]) and h[i] < 0.3 * h[0]
+        else:  # on the max side: the one-sided rule, clustered towards it
+            assert np.all(np.diff(h) < 0)
+    tets, _ = kuhn_tetrahedra(hexes, quads)
+    v = signed_volumes(x, tets)
+    assert v.min() > 0.0 and v.sum() == pytest.approx(40.0 * 40.0 * 10.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("keys, message", [
+    ({"focus": [20.0, 20.0, 10.0]}, "no axis is graded"),
+    ({"focus": [50.0, 20.0, 10.0], "grading": [2.0, 2.0, 1.0]}, "x = 50 is outside the box"),
+    ({"builder": "shell_octant", "n": 4, "focus": [1.0, 1.0, 1.0]}, "focus applies to the box builder"),
+])
+def test_a_bad_focus_is_refused_naming_the_key(keys, message):
+    from hypercontact import scene
+
+    data = {"mesh": {"builder": "box", "size": [40.0, 40.0, 10.0], **keys},
+            "material": {"law": "neo_hookean", "parameters": {"mu": 1.0, "K": 2.0}}}
+    with pytest.raises(scene.SceneError, match=rf"mesh\.focus.*{message}"):
+        scene.load(data)

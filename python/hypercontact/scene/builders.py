@@ -77,6 +77,7 @@ def check_shape(spec):
     """Invalid (naming the key) if a built-in builder's keys ``spec`` would
     make a degenerate or oversized mesh."""
     builder = BUILDERS[spec["builder"]]
+    _check_focus(spec)
     if builder.surfaces is None:
         return
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
@@ -95,6 +96,24 @@ def check_shape(spec):
         kind = "tetrahedra" if spec.get("cells") == "tetrahedra" else "hexahedra"
         raise Invalid(f"n = {spec['n']}, m = {spec['m']} make {cells:.3g} {kind}, more than "
                       f"{MAX_CELLS:.0e}", "n")
+
+
+def _check_focus(spec):
+    """focus: the box builder's only, with a graded axis, inside or on the box along each graded axis."""
+    focus = spec.get("focus")
+    if focus is None:
+        return
+    if spec["builder"] != "box":
+        raise Invalid(f"focus applies to the box builder, not {spec['builder']!r}", "focus")
+    graded = [a for a in range(3) if abs(spec["grading"][a]) != 1.0]
+    if not graded:
+        raise Invalid("given, but no axis is graded (grading = [1, 1, 1]): the focus is where graded cells "
+                      "cluster", "focus")
+    for a in graded:
+        lo, hi = spec["origin"][a], spec["origin"][a] + spec["size"][a]
+        if not lo <= focus[a] <= hi:
+            raise Invalid(f"the focus's {'xyz'[a]} = {focus[a]:g} is outside the box ({lo:g} to {hi:g}) on the "
+                          f"graded axis {'xyz'[a]}", "focus")
 
 
 def _check_box(spec):

@@ -2,6 +2,7 @@
 material): a built-in builder and its keys, or a mesh file (then each
 [[body]] is one of its physical volumes)."""
 import re
+from typing import Optional
 
 from pydantic import root_validator, validator
 
@@ -28,6 +29,9 @@ class Mesh(SceneModel):
     n: integer(POSITIVE) = 4
     m: integer(POSITIVE) = 4
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    #: the box builder: the point graded axes cluster their cells towards (from both sides where it is
+    #: inside the box, e.g. a punch's edge); not given: towards the side the sign of grading says
+    focus: Optional[vector(COORDINATES)] = None
     #: the box builder's cells: hexahedra, or each hexahedron split into six tetrahedra (the oring
     #: builder's: an O-grid of hexahedra, or gmsh's Delaunay tetrahedra)
     cells: string(one_of(CELL_KINDS, choices(CELL_KINDS))) = "hexahedra"
@@ -73,6 +77,7 @@ class Body(SceneModel):
     thickness: number(POSITIVE, LENGTH) = 1.0
     radius: number(POSITIVE, LENGTH) = 1.0
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
+    focus: Optional[vector(COORDINATES)] = None
     #: a physical volume of the [mesh] file: the body is its cells (no builder keys); "": none
     volume: string() = ""
     material: Material
