@@ -176,8 +176,10 @@ class SurfacePairing:
         ring, node_normal, facet_normal = self.excluded
         point = np.repeat(np.arange(len(self.point_area)), np.diff(offsets))
         node = self.point_nodes[point, 0]
-        facing = np.einsum("pk,pk->p", node_normal[node], facet_normal[idx]) < 0.0
-        keep = facing & (np.asarray(ring[node, np.array(idx, dtype=np.int64)]).ravel() == 0)
+        keep = np.einsum("pk,pk->p", node_normal[node], facet_normal[idx]) < 0.0  # facing: few pairs
+        facing = np.flatnonzero(keep)
+        if len(facing):
+            keep[facing] = np.asarray(ring[node[facing], np.asarray(idx, dtype=np.int64)[facing]]).ravel() == 0
         counts = np.bincount(point[keep], minlength=len(self.point_area))
         return np.concatenate([[0], np.cumsum(counts)]).astype(offsets.dtype), np.ascontiguousarray(idx[keep])
 
