@@ -81,6 +81,20 @@ def test_driver_law_with_a_split_formulation_names_the_key():
         Simulation(sc, MPI.COMM_SELF, log=quiet)
 
 
+def test_quadratic_hexahedra_with_too_few_gauss_points_are_refused():
+    """The punch scene states quadrature_degree = 2 (2 × 2 × 2 points, right for its trilinear
+    cells); switched to degree = 2 it would keep them and leave the 27-node hexahedra with
+    zero-energy modes (Newton fails at the first step): refused naming the key, and accepted
+    with quadrature_degree = 4 (3 × 3 × 3). Tetrahedra of degree 2 take the degree-2 rule."""
+    sc = scene.load(PUNCH, ["mesh.n=2", "mesh.m=1", "discretisation.degree=2"])
+    with pytest.raises(scene.SceneError, match=r"'discretisation\.quadrature_degree': 27-node hexahedra .* found 2"):
+        Simulation(sc, MPI.COMM_SELF, log=quiet)
+    Simulation(scene.load(PUNCH, ["mesh.n=2", "mesh.m=1", "discretisation.degree=2",
+                                  "discretisation.quadrature_degree=4"]), MPI.COMM_SELF, log=quiet)
+    Simulation(scene.load(PUNCH, ["mesh.n=2", "mesh.m=1", "discretisation.degree=2", 'mesh.cells="tetrahedra"']),
+               MPI.COMM_SELF, log=quiet)
+
+
 def fail_at(step, attempts=None):
     """A fail_attempt hook: every attempt at load step ``step`` fails (or
     only those numbered in ``attempts``)."""

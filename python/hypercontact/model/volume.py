@@ -36,6 +36,12 @@ def build_volume(scene, body, law=None):
                          f"law's isochoric part; a driver script's law has none (use \"displacement\")")
     if disc["formulation"] == "mixed":
         return _mixed(body, name, params, desc, disc["quadrature_degree"])
+    if disc["degree"] == 2 and disc["quadrature_degree"] < 4 and body.mesh.topology.cell_type.name == "hexahedron":
+        # 2 × 2 × 2 points (degrees 2 and 3) see 48 strains of a 27-node hexahedron's 75 deformation modes:
+        # the rest are zero-energy (hourglass) modes, and Newton fails from the first step
+        raise SceneError(f"scene key 'discretisation.quadrature_degree': 27-node hexahedra (degree = 2) need "
+                         f"3 × 3 × 3 Gauss points (quadrature_degree >= 4), found {disc['quadrature_degree']}: fewer "
+                         f"leave zero-energy (hourglass) modes")
     V = dfx.vector_space(body.mesh, disc["degree"])
     u = dfx.fem.Function(V, name="displacement")
     if scene["body"]:
