@@ -45,14 +45,13 @@ class PathFollowing:
         self.bordered = Bordered(model.problem, model.q_form, model.bcs, model.comm, scene["solver"]["petsc"],
                                  timers=timers)
 
-    def _constraint(self, state, probe, axis, target):
+    def _constraint(self, state, probe, axis, target, t):
+        """The step's constraint; a fresh arc length's first size is steps.initial × |t|, t the tangent at λ = 0."""
         st, model = self.scene["steps"], self.model
         if st["control"] == "arclength":
             if state is not None:
                 return ArcLengthConstraint(state["size0"])
-            model.set_load_factor(0.0)
-            self.bordered.assemble(model.problem.x)
-            size = st["initial"] * self.bordered.tangent_direction().norm()
+            size = st["initial"] * t.norm()
             if not size > 0.0:
                 raise StepFailure("arc length cannot start: the [[pressure]] loads do no work on the free "
                                   "degrees of freedom (their load vector is zero once the boundary "
@@ -219,18 +218,17 @@ class PathFollowing:
         model.w.vector.copy(x)
         probe = model.probes[st["stop_probe"]]
         axis, target = AXIS[st["stop_component"]], st["stop_value"]
-        self._take(x)
-        self._search(fresh=True)  # a deformable master's pairing, before the first tangent
-        self.constraint = constraint = self._constraint(state, probe, axis, target)
-        size0 = constraint.size
         lam, du_prev, cuts, last_dlam = 0.0, None, 0, None
         if state is not None:
-            lam, last_dlam, size0, constraint.size = state["lam"], state["last_dlam"], state["size0"], state["size"]
-            model.set_load_factor(lam)
+            lam, last_dlam = state["lam"], state["last_dlam"]
             if "du_prev" in arrays:
                 du_prev = x.duplicate()
                 du_prev.array[:] = arrays["du_prev"]
-        t = self._converged_at(x, lam, commit=False)
+        t = self._converged_at(x, lam, commit=False)  # the pairing and the first step's tangent
+        self.constraint = constraint = self._constraint(state, probe, axis, target, t)
+        size0 = constraint.size
+        if state is not None:
+            size0, constraint.size = state["size0"], state["size"]
         before = None  # the last converged step: (its start state, its size), to locate a limit point in it
         while observer.steps_written() < st["max_steps"]:
             reached = probe.value(model.u)[axis]
