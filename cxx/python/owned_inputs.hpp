@@ -52,6 +52,7 @@ struct OwnedSurfaceContactInput {
   double eps_n;
   RealArray multipliers;
   double smoothing;
+  bool smooth_master = false;
 
   SurfaceContactInput view() const {
     check_shape(multipliers, "multipliers", {any});
@@ -84,7 +85,8 @@ struct OwnedSurfaceContactInput {
             as_span(dofs),
             eps_n,
             as_span(multipliers),
-            smoothing};
+            smoothing,
+            smooth_master};
   }
 };
 

@@ -17,18 +17,20 @@ void declare_surface_contact(py::module_& m) {
                  "(np,); facets, edge_neighbour (nf, 3) triangles or (nf, 4) quadrilaterals; offsets\n"
                  "(np + 1,), candidates: the broad phase's CSR; dofs (nn, 3) int32 global, -1 =\n"
                  "constrained; eps_n; multipliers (np,) augmented-Lagrangian pressures >= 0, or empty;\n"
-                 "smoothing >= 0.")
+                 "smoothing >= 0; smooth_master: project along averaged nodal normals (linear facets).")
       .def(py::init([](RealArray x, IndexArray point_nodes, RealArray point_weights,
                        RealArray point_area, IndexArray facets, IndexArray edge_neighbour,
                        IndexArray offsets, IndexArray candidates, IndexArray dofs, double eps_n,
-                       RealArray multipliers, double smoothing) {
+                       RealArray multipliers, double smoothing, bool smooth_master) {
              return In{x,       point_nodes, point_weights, point_area, facets,      edge_neighbour,
-                       offsets, candidates,  dofs,          eps_n,      multipliers, smoothing};
+                       offsets, candidates,  dofs,          eps_n,      multipliers, smoothing,
+                       smooth_master};
            }),
            py::kw_only(), py::arg("x"), py::arg("point_nodes"), py::arg("point_weights"),
            py::arg("point_area"), py::arg("facets"), py::arg("edge_neighbour"), py::arg("offsets"),
            py::arg("candidates"), py::arg("dofs"), py::arg("eps_n"),
-           py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0)
+           py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
+           py::arg("smooth_master") = false)
       .def_readwrite("x", &In::x)
       .def_readwrite("point_nodes", &In::point_nodes)
       .def_readwrite("point_weights", &In::point_weights)
@@ -40,7 +42,8 @@ void declare_surface_contact(py::module_& m) {
       .def_readwrite("dofs", &In::dofs)
       .def_readwrite("eps_n", &In::eps_n)
       .def_readwrite("multipliers", &In::multipliers)
-      .def_readwrite("smoothing", &In::smoothing);
+      .def_readwrite("smoothing", &In::smoothing)
+      .def_readwrite("smooth_master", &In::smooth_master);
 
   using S = SurfaceContactState;
   py::class_<S>(m, "SurfaceContactState", "Pairing, gap and pressure of every slave point")

@@ -1,29 +1,38 @@
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <hypercontact/smooth_master.hpp>
 #include <hypercontact/surface_contact.hpp>
 
+#include "smooth_points.hpp"
 #include "surface_point.hpp"
 
 namespace hypercontact {
 
 namespace {
 
+/// The faceted element of point p, if closed (also the smooth master's fallback).
+template <int NM>
+void faceted_point(const SurfaceContactInput& in, const NarrowPhase& narrow, std::size_t p,
+                   SurfaceContactEvaluation& out, detail::ClosedPoint<NM>& point) {
+  if (!detail::closed_normal_element<NM>(in, narrow, p, out, point)) return;
+  const SurfaceContact& e = point.element;
+  const int ns = point.slave.num_nodes;
+  const int n = 3 * (ns + NM);
+  ContactElements::Slot slot = out.elements.append(static_cast<std::int32_t>(p), n, n);
+  detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
+  std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
+  slot.residual = e.residual;
+  slot.tangent = e.tangent;
+  for (int i = 0; i < ns; ++i) out.force -= e.residual.segment<3>(3 * i);
+}
+
 /// Every slave point against facets of NM nodes.
 template <int NM>
 void evaluate_points(const SurfaceContactInput& in, const NarrowPhase& narrow,
                      SurfaceContactEvaluation& out) {
   detail::ClosedPoint<NM> point;
-  for (std::size_t p = 0; p < in.point_area.size(); ++p) {
-    if (!detail::closed_normal_element<NM>(in, narrow, p, out, point)) continue;
-    const SurfaceContact& e = point.element;
-    const int ns = point.slave.num_nodes;
-    const int n = 3 * (ns + NM);
-    ContactElements::Slot slot = out.elements.append(static_cast<std::int32_t>(p), n, n);
-    detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
-    std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
-    slot.residual = e.residual;
-    slot.tangent = e.tangent;
-    for (int i = 0; i < ns; ++i) out.force -= e.residual.segment<3>(3 * i);
-  }
+  for (std::size_t p = 0; p < in.point_area.size(); ++p) faceted_point<NM>(in, narrow, p, out, point);
 }
 
 }  // namespace
@@ -34,6 +43,22 @@ SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in)
   SurfaceContactEvaluation out;
   detail::init_state(out, in.point_area.size());
   out.elements.numbering = DofNumbering::Global;
+  if (in.smooth_master) {
+    detail::ClosedPoint<3> point3;
+    detail::ClosedPoint<4> point4;
+    if (in.facets.nodes_per_facet == 3)
+      detail::evaluate_smooth_points<3>(in, narrow, out, out.elements, nullptr, nullptr,
+                                        [&](std::size_t p) { faceted_point<3>(in, narrow, p, out, point3); });
+    else if (in.facets.nodes_per_facet == 4)
+      detail::evaluate_smooth_points<4>(in, narrow, out, out.elements, nullptr, nullptr,
+                                        [&](std::size_t p) { faceted_point<4>(in, narrow, p, out, point4); });
+    else
+      throw std::invalid_argument(
+          "evaluate_surface_contact: a smooth master needs linear facets (3 or 4 nodes), got " +
+          std::to_string(in.facets.nodes_per_facet) +
+          " (quadratic facets are curved already and are not smoothed)");
+    return out;
+  }
   switch (in.facets.nodes_per_facet) {
     case 3: evaluate_points<3>(in, narrow, out); break;
     case 4: evaluate_points<4>(in, narrow, out); break;

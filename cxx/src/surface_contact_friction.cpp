@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "smooth_points.hpp"
 #include "surface_point.hpp"
 
 namespace hypercontact {
@@ -65,35 +66,50 @@ void record_friction(const SurfaceFriction& fr, std::size_t p, SurfaceFrictionEv
   s.stick[p] = static_cast<std::int32_t>(fr.state);
 }
 
+/// Slave point p against facets of NM nodes (the faceted element with its friction).
+template <int NM>
+void friction_point(const SurfaceFrictionInput& fin, const NarrowPhase& narrow, std::size_t p,
+                    SurfaceFrictionEvaluation& s, detail::ClosedPoint<NM>& point) {
+  const SurfaceContactInput& in = fin.contact;
+  if (!detail::closed_normal_element<NM>(in, narrow, p, s, point)) return;
+  const bool history = fin.old_facet[p] >= 0;
+  const std::int32_t old = history ? fin.old_facet[p] : point.pairing.facet;
+  const SurfaceFriction fr = point_friction<NM>(fin, p, point, old);
+  record_friction(fr, p, s);
+
+  // Rows: slave nodes + current facet; columns: those + old facet.
+  const SurfaceContact& e = point.element;
+  const int ns = point.slave.num_nodes;
+  const int n = 3 * (ns + NM), m = n + 3 * NM;
+  ContactElements::Slot slot = s.elements.append(static_cast<std::int32_t>(p), n, m);
+  detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
+  std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
+  detail::element_dofs(in, {}, old, slot.columns.subspan(n));
+  slot.residual = e.residual + fr.residual.head(n);
+  slot.tangent.leftCols(n) = e.tangent;
+  if (history) slot.tangent += fr.tangent.topRows(n);
+  for (int i = 0; i < ns; ++i) {
+    s.force -= e.residual.segment<3>(3 * i);
+    s.total_force -= slot.residual.segment<3>(3 * i);
+  }
+}
+
 /// Every slave point against facets of NM nodes.
 template <int NM>
 void evaluate_points(const SurfaceFrictionInput& fin, const NarrowPhase& narrow,
                      SurfaceFrictionEvaluation& s) {
-  const SurfaceContactInput& in = fin.contact;
   detail::ClosedPoint<NM> point;
-  for (std::size_t p = 0; p < in.point_area.size(); ++p) {
-    if (!detail::closed_normal_element<NM>(in, narrow, p, s, point)) continue;
-    const bool history = fin.old_facet[p] >= 0;
-    const std::int32_t old = history ? fin.old_facet[p] : point.pairing.facet;
-    const SurfaceFriction fr = point_friction<NM>(fin, p, point, old);
-    record_friction(fr, p, s);
+  for (std::size_t p = 0; p < fin.contact.point_area.size(); ++p)
+    friction_point<NM>(fin, narrow, p, s, point);
+}
 
-    // Rows: slave nodes + current facet; columns: those + old facet.
-    const SurfaceContact& e = point.element;
-    const int ns = point.slave.num_nodes;
-    const int n = 3 * (ns + NM), m = n + 3 * NM;
-    ContactElements::Slot slot = s.elements.append(static_cast<std::int32_t>(p), n, m);
-    detail::element_dofs(in, point.slave.nodes(), point.pairing.facet, slot.rows);
-    std::copy(slot.rows.begin(), slot.rows.end(), slot.columns.begin());
-    detail::element_dofs(in, {}, old, slot.columns.subspan(n));
-    slot.residual = e.residual + fr.residual.head(n);
-    slot.tangent.leftCols(n) = e.tangent;
-    if (history) slot.tangent += fr.tangent.topRows(n);
-    for (int i = 0; i < ns; ++i) {
-      s.force -= e.residual.segment<3>(3 * i);
-      s.total_force -= slot.residual.segment<3>(3 * i);
-    }
-  }
+/// Every slave point against a smooth master of facets of NM = 3 or 4 nodes.
+template <int NM>
+void evaluate_smooth(const SurfaceFrictionInput& fin, const NarrowPhase& narrow,
+                     SurfaceFrictionEvaluation& s) {
+  detail::ClosedPoint<NM> point;
+  detail::evaluate_smooth_points<NM>(fin.contact, narrow, s, s.elements, &fin, &s,
+                                     [&](std::size_t p) { friction_point<NM>(fin, narrow, p, s, point); });
 }
 
 }  // namespace
@@ -104,6 +120,17 @@ SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& 
   check_history(fin);
   const NarrowPhase narrow({in.x, in.facets, in.edge_neighbour});
   SurfaceFrictionEvaluation s = empty_evaluation(in.point_area.size());
+  if (in.smooth_master) {
+    if (in.facets.nodes_per_facet == 3)
+      evaluate_smooth<3>(fin, narrow, s);
+    else if (in.facets.nodes_per_facet == 4)
+      evaluate_smooth<4>(fin, narrow, s);
+    else
+      throw std::invalid_argument(std::string(who) +
+                                  ": a smooth master needs linear facets (3 or 4 nodes), got " +
+                                  std::to_string(in.facets.nodes_per_facet));
+    return s;
+  }
   switch (in.facets.nodes_per_facet) {
     case 3: evaluate_points<3>(fin, narrow, s); break;
     case 4: evaluate_points<4>(fin, narrow, s); break;

@@ -56,8 +56,6 @@ void init_state(SurfaceContactState& s, std::size_t np) {
   s.num_closed = 0;
 }
 
-namespace {
-
 SlavePoint slave_point(const SurfaceContactInput& in, std::size_t p) {
   SlavePoint out;
   const std::size_t stride = nodes_per_point(in);
@@ -84,8 +82,6 @@ void record_pairing(const PointPairing& pr, std::size_t p, SurfaceContactState& 
   s.gap[p] = pr.gap;
   s.status[p] = static_cast<std::int32_t>(pr.status);
 }
-
-}  // namespace
 
 template <int NM>
 bool closed_normal_element(const SurfaceContactInput& in, const NarrowPhase& narrow, std::size_t p,

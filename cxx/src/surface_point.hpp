@@ -36,6 +36,12 @@ struct SlavePoint {
   Eigen::Vector3d position() const { return x * weights; }
 };
 
+/// Slave point p of the input.
+SlavePoint slave_point(const SurfaceContactInput& in, std::size_t p);
+
+/// Records the pairing of point p (facet, feature, ξ, normal, gap, status) in s.
+void record_pairing(const PointPairing& pr, std::size_t p, SurfaceContactState& s);
+
 /// A paired and closed slave point with its normal element against a facet of NM nodes.
 template <int NM>
 struct ClosedPoint {

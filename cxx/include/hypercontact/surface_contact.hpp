@@ -57,11 +57,21 @@ struct SurfaceContactInput {
   /// Smoothing δ ≥ 0 of the normal law (penetration.hpp, node_to_surface): 0 is the Macaulay
   /// bracket; δ > 0 makes points with g < λ_N/ε_N + δ active.
   double smoothing = 0.0;
+  /// A smooth master (smooth_master.hpp; linear facets only): every slave point is projected
+  /// along the master's averaged nodal normals, on the facet where that projection lands (walked
+  /// to from the closest facet across edges, among the candidates), and its force acts along the
+  /// interpolated normal; its element's columns add the nodal normals' stencils. A point whose
+  /// projection leaves the candidates, crosses the rim, does not converge or meets a crease keeps
+  /// the faceted element (feature 0, 1, 2; the smooth element reports feature 3), unless it lies
+  /// beside the closest facet's edge or vertex (|g| < |r|/2): then it is open (docs/method.md
+  /// §3.6).
+  bool smooth_master = false;
 };
 
 /// The state and, for every closed point, its element: rows = columns = the dofs of
 /// [the point's slave nodes, the facet's nodes] (3 each), R and K of node_to_surface, global
-/// numbering (rows of master nodes may belong to another rank).
+/// numbering (rows of master nodes may belong to another rank). With a smooth master the rows
+/// are the same and the columns add the stencil's nodes (smooth_node_to_surface).
 struct SurfaceContactEvaluation : SurfaceContactState {
   ContactElements elements;
 };
