@@ -17,7 +17,7 @@ KINDS = {
                  "rotation_axis": [0.0, 0.0, 1.0], "rotation_point": [0.5, 0.5, 1.5], "inside": True},
     "sphere": {"center": [0.5, 0.5, 1.5], "radius": 0.6, "motion": [0.0, 0.0, -0.1],
                "rotation_axis": [0.0, 1.0, 0.0], "rotation_point": [0.5, 0.5, 2.1]},
-    "surface": {"master": "top.zmin", "passes": 1, "integration": "nodal", "capture": 0.1},
+    "surface": {"master": "top.zmin", "passes": 1, "integration": "nodal", "capture": 0.1, "master_surface": "smooth"},
 }
 MODELS = {"plane": PlaneContact, "box": BoxContact, "cylinder": CylinderContact, "sphere": SphereContact,
           "surface": SurfaceContact}

@@ -23,7 +23,7 @@ from reference.runs import column, run
 R_IN, T = 8.0, 2.0
 
 
-def tube(half=True, delta=7.5, n=24, m=3, self_contact=True):
+def tube(half=True, delta=7.5, n=24, m=3, self_contact=True, master_surface="faceted"):
     """The tube of inner radius 8 and wall 2 (mm) crushed by plates moving δ each: the half
     model (θ from −90° to 90°, both cut faces on x = 0) with both plates and the inner wall's
     self-contact, or the quarter model (θ from 0° to 90°, the cut face θ = 0 on y = 0)."""
@@ -42,7 +42,8 @@ def tube(half=True, delta=7.5, n=24, m=3, self_contact=True):
                                 "point": [0.0, -R_IN - T, 0.0], "normal": [0.0, 1.0, 0.0],
                                 "motion": [0.0, delta, 0.0]})
         if self_contact:
-            data["contact"].append({"name": "fold", "surface": "inner", "obstacle": "surface", "master": "inner"})
+            data["contact"].append({"name": "fold", "surface": "inner", "obstacle": "surface", "master": "inner",
+                                    "master_surface": master_surface})
     return data
 
 
@@ -126,11 +127,72 @@ def test_self_contact_tangent_at_the_touch(tmp_path):
     assert np.abs(A - B).max() <= 1e-5 * np.abs(B).max()
 
 
+def mirror_model(delta, eps_n):
+    """The quarter model (θ from 0° to 90°) whose inner wall meets the rigid frictionless plane
+    y = 0 instead of its mirror image, with penalty ``eps_n``."""
+    data = tube(half=False, delta=delta)
+    data["contact"].append({"name": "fold", "surface": "inner", "obstacle": "plane", "point": [0.0, 0.0, 0.0],
+                            "normal": [0.0, 1.0, 0.0], "eps_n": eps_n})
+    return data
+
+
+def test_past_the_fold_smooth_self_contact_equals_the_mirror_model(tmp_path):
+    """Crushed to δ = 9 mm (the walls fold flat at 7.98 mm, then each is squeezed to half its
+    thickness): the half model with the inner wall's self-contact on a smooth master against
+    the quarter model pressed onto a rigid frictionless plane at y = 0, where the walls meet.
+    By symmetry these are the same equations when the quarter's penalty is 4 ε_N: where the
+    walls overlap by δ_o, a point of either wall is a slave point against the other (self-
+    contact is two-sided), so the pressure between them is 2 ε_N δ_o; in the quarter model a
+    wall at depth d = δ_o / 2 below y = 0 carries ε d. The plate force must agree at every load
+    factor both runs reached (the issue's bound is 1 %), and the walls' overlap must be twice
+    the quarter's penetration of its plane (no point passes further through the other wall)."""
+    sim, half = run(tube(delta=9.0, master_surface="smooth"), tmp_path / "half")
+    eps = sim.contacts[-1].eps_n
+    sim_q, quarter = run(mirror_model(9.0, 4 * eps), tmp_path / "quarter")
+    lam_h, lam_q = column(half, "load_factor"), column(quarter, "load_factor")
+    assert lam_h[-1] == pytest.approx(1.0) and lam_q[-1] == pytest.approx(1.0)
+    common = [(i, j) for i, lam in enumerate(lam_h) for j in np.flatnonzero(np.isclose(lam_q, lam, rtol=0, atol=1e-9))]
+    assert len(common) >= 10
+    f_half = column(half, "top_fy")[[i for i, _ in common]]
+    f_quarter = column(quarter, "top_fy")[[j for _, j in common]]
+    assert np.abs(f_half - f_quarter).max() <= 1e-4 * np.abs(f_quarter).max()
+    assert column(half, "fold_closed_nodes")[-1] > 0 and abs(f_quarter[-1]) > 20.0  # well past the touch
+    overlap = -np.asarray(sim.contacts[-1].evaluate(sim.u).gap).min()
+    depth = -np.asarray(sim_q.contacts[-1].evaluate(sim_q.u).gap).min()
+    assert depth > 0 and overlap == pytest.approx(2 * depth, rel=1e-3)
+
+
+def test_a_flat_surface_does_not_contact_itself(tmp_path):
+    """A slab's top surface as its own master, the slab squeezed sideways by 20 % (its top stays
+    flat): no point may close, faceted or smooth, and the force is that of the run without the
+    self-contact, to rounding."""
+    def slab(self_contact=None):
+        data = {"title": "slab", "mesh": {"builder": "box", "size": [4.0, 4.0, 1.0], "n": 4, "m": 1},
+                "material": {"law": "neo_hookean", "parameters": {"mu": 0.5, "K": 5.0}},
+                "bc": [{"surface": "xmin", "fix": ["x"]}, {"surface": "ymin", "fix": ["y"]},
+                       {"surface": "zmin", "fix": ["z"]}],
+                "contact": [{"name": "press", "surface": "xmax", "obstacle": "plane", "point": [4.0, 0.0, 0.0],
+                             "normal": [-1.0, 0.0, 0.0], "motion": [-0.8, 0.0, 0.0]}],
+                "steps": {"initial": 0.25, "max": 0.25}, "output": {"xdmf": False}}
+        if self_contact:
+            data["contact"].append({"name": "top", "surface": "zmax", "obstacle": "surface", "master": "zmax",
+                                    "master_surface": self_contact})
+        return data
+
+    _, plain = run(slab(), tmp_path / "plain")
+    for kind in ("faceted", "smooth"):
+        sim, w = run(slab(kind), tmp_path / kind)
+        assert np.all(column(w, "top_closed_nodes") == 0), kind
+        assert column(w, "press_fx") == pytest.approx(column(plain, "press_fx"), rel=1e-10), kind
+        assert sim.contacts[-1].geometry.candidates[1].size == 0, kind  # every pair excluded
+
+
 @pytest.mark.mpi
-def test_self_contact_on_two_ranks_equals_serial(out_dir):
-    data = tube(delta=7.98)
-    _, par = run(data, out_dir / "par", MPI.COMM_WORLD)
-    _, ser = run(data, out_dir / f"ser{MPI.COMM_WORLD.rank}", MPI.COMM_SELF)
+@pytest.mark.parametrize("delta, master_surface", [(7.98, "faceted"), (9.0, "smooth")])
+def test_self_contact_on_two_ranks_equals_serial(out_dir, delta, master_surface):
+    data = tube(delta=delta, master_surface=master_surface)
+    _, par = run(data, out_dir / f"par{master_surface}", MPI.COMM_WORLD)
+    _, ser = run(data, out_dir / f"ser{master_surface}{MPI.COMM_WORLD.rank}", MPI.COMM_SELF)
     assert len(par.steps) == len(ser.steps)
     for key in ("top_fy", "crown_uy", "fold_closed_nodes"):
         assert column(par, key) == pytest.approx(column(ser, key), rel=1e-8, abs=1e-12), key

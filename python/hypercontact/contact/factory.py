@@ -145,8 +145,12 @@ def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max,
         law = (Coulomb(entry["mu"], s.eps_t, RigidFrictionHistory(geometry), comm) if mu_max > 0
                else Frictionless())
     else:
+        smooth = entry.get("master_surface", "faceted") == "smooth"
+        if smooth and dfx.degree_of(V) != 1:
+            raise ValueError(f"contact {s.name!r}: master_surface = \"smooth\" needs linear elements (degree 1); "
+                             "quadratic facets are curved already and are not smoothed")
         geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
-                                  entry["capture"], s.name, u_dofs, u_global)
+                                  entry["capture"], s.name, u_dofs, u_global, smooth=smooth)
         law = Frictionless() if second else _surface_law(entry, s, geometry, comm, mu_max)
     enforcement = _enforcement(s, entry, len(geometry.point_area))
     return Contact(s.name, geometry, law, enforcement, s.eps_n, s.smoothing, entry)

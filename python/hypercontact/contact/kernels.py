@@ -72,7 +72,7 @@ def _surface(geometry, law, multipliers, eps_n, smoothing, x):
     contact = _cpp.SurfaceContactInput(
         x=x, point_nodes=g.point_nodes, point_weights=g.point_weights, point_area=g.point_area, facets=g.facets,
         edge_neighbour=g.edge_neighbour, offsets=offsets, candidates=candidates, dofs=g.dofs, eps_n=eps_n,
-        multipliers=multipliers, smoothing=smoothing)
+        multipliers=multipliers, smoothing=smoothing, smooth_master=g.smooth)
     if not law.frictional:
         return Evaluation(_cpp.evaluate_surface_contact(contact), SURFACE_ARRAYS, x)
     h = law.history

@@ -50,7 +50,7 @@ class SurfacePairing:
     assembly = "global"
 
     def __init__(self, V, facet_tags, slave_tags, master_tags, constrained, integration, capture, name,
-                 u_dofs=None, u_global=None):
+                 u_dofs=None, u_global=None, smooth=False):
         """``constrained``: mask of the unknown's process-local dofs; ``u_dofs``,
         ``u_global``: the local and global indices in the unknown of V's local
         dofs (the mixed formulation), None if the unknown is the displacement."""
@@ -102,6 +102,9 @@ class SurfacePairing:
         self.excluded = self._self_contact_exclusion(corners) if set(slave_tags) & set(master_tags) else None
         self.candidates = None  # (offsets, indices) of the current pairing: the matrix pattern
         self.extra_nodes = None  # callable: further (point, contact node) couplings (friction history)
+        #: smooth master (C++ smooth_master.hpp): per facet, the nodes its nodal normals depend on (CSR)
+        self.smooth = bool(smooth)
+        self.stencil = self._facet_stencils() if self.smooth else None
         self.repairings = 0
         self.load_factor = 0.0
 
@@ -173,7 +176,8 @@ class SurfacePairing:
         offsets, idx = _cpp.find_candidates(self.slave_points(x), x, self.facets, self.capture)
         if self.excluded is None or len(idx) == 0:
             return offsets, idx
-        ring, node_normal, facet_normal = self.excluded
+        ring, incidence, corners = self.excluded
+        node_normal, facet_normal = self._normals(x, incidence, corners)
         point = np.repeat(np.arange(len(self.point_area)), np.diff(offsets))
         node = self.point_nodes[point, 0]
         keep = np.einsum("pk,pk->p", node_normal[node], facet_normal[idx]) < 0.0  # facing: few pairs
@@ -183,13 +187,27 @@ class SurfacePairing:
         counts = np.bincount(point[keep], minlength=len(self.point_area))
         return np.concatenate([[0], np.cumsum(counts)]).astype(offsets.dtype), np.ascontiguousarray(idx[keep])
 
+    def _normals(self, x, incidence, corners):
+        """Unit facet normals and area-weighted nodal normals at coordinates x."""
+        c = self.facets[:, :corners]
+        if corners == 4:
+            normal = np.cross(x[c[:, 2]] - x[c[:, 0]], x[c[:, 3]] - x[c[:, 1]])
+        else:
+            normal = np.cross(x[c[:, 1]] - x[c[:, 0]], x[c[:, 2]] - x[c[:, 0]])
+        node_normal = incidence @ normal  # area-weighted sum over the node's facets
+        node_normal /= np.maximum(np.linalg.norm(node_normal, axis=1, keepdims=True), 1e-300)
+        facet_normal = normal / np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-300)
+        return node_normal, facet_normal
+
     def _self_contact_exclusion(self, corners):
         """Self-contact: what excludes a (slave node, facet) pair from the search — the facets
         that touch the node's own facets (its facets and their neighbours, by a shared node: a
-        sparse contact node × facet count), and the facets that do not face the node in the
-        reference configuration (facet normal · the node's normal ≥ 0: a slave point may meet a
-        facet of the same surface only where the surface has folded back onto itself, as the
-        two inner walls of a flattened tube). Returns (ring, node normals, facet normals)."""
+        sparse contact node × facet count), and, at each search, the facets that do not face the
+        node in the configuration searched (facet normal · the node's normal ≥ 0: a slave point
+        meets a facet of the same surface only where the surface has folded back onto itself, as
+        the two inner walls of a flattened tube). The facing test is made on the current
+        configuration, not the reference one: points of a tube's inner wall 60° apart face each
+        other once the tube is flat, not before. Returns (ring, incidence, corners)."""
         from scipy import sparse
 
         n_nodes, n_facets = len(self.X), len(self.facets)
@@ -197,16 +215,20 @@ class SurfacePairing:
         cols = np.repeat(np.arange(n_facets), self.facets.shape[1])
         incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_nodes, n_facets))
         ring = (incidence @ incidence.T) @ incidence  # node → facets sharing a node with its facets
-        X = self.X
-        c = self.facets[:, :corners]
-        if corners == 4:
-            normal = np.cross(X[c[:, 2]] - X[c[:, 0]], X[c[:, 3]] - X[c[:, 1]])
-        else:
-            normal = np.cross(X[c[:, 1]] - X[c[:, 0]], X[c[:, 2]] - X[c[:, 0]])
-        node_normal = incidence @ normal  # area-weighted sum over the node's facets
-        node_normal /= np.maximum(np.linalg.norm(node_normal, axis=1, keepdims=True), 1e-300)
-        facet_normal = normal / np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-300)
-        return ring.tocsr(), node_normal, facet_normal
+        return ring.tocsr(), incidence, corners
+
+    def _facet_stencils(self):
+        """Smooth master: per facet, the nodes of every facet that shares a node with it (its
+        nodal normals are made of them), as CSR (offsets, nodes)."""
+        from scipy import sparse
+
+        n_nodes, n_facets = len(self.X), len(self.facets)
+        rows = self.facets.ravel()
+        cols = np.repeat(np.arange(n_facets), self.facets.shape[1])
+        incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_nodes, n_facets))
+        stencil = ((incidence.T @ incidence) @ incidence.T).tocsr()  # facet → nodes of its neighbours
+        stencil.sort_indices()
+        return stencil.indptr.astype(np.int64), stencil.indices.astype(np.int32)
 
     def update_pairing(self, u, fresh):
         """With ``fresh`` (a step starts): search at u and make it the pairing.
@@ -242,9 +264,17 @@ class SurfacePairing:
         offsets, cand = self.candidates
         n_points = len(self.point_area)
         per_candidate = np.repeat(np.arange(n_points), np.diff(offsets))
-        points = [np.repeat(np.arange(n_points), self.point_nodes.shape[1]),
-                  np.repeat(per_candidate, self.facets.shape[1])]
-        nodes = [self.point_nodes.ravel(), self.facets[cand].ravel()]
+        points = [np.repeat(np.arange(n_points), self.point_nodes.shape[1])]
+        nodes = [self.point_nodes.ravel()]
+        if self.stencil is None:
+            points.append(np.repeat(per_candidate, self.facets.shape[1]))
+            nodes.append(self.facets[cand].ravel())
+        else:  # smooth master: the candidates' stencils (their facets' nodes among them)
+            offsets_s, stencil_nodes = self.stencil
+            lengths = offsets_s[cand + 1] - offsets_s[cand]
+            starts = np.repeat(offsets_s[cand] - np.cumsum(lengths) + lengths, lengths)
+            points.append(np.repeat(per_candidate, lengths))
+            nodes.append(stencil_nodes[starts + np.arange(lengths.sum())])
         if extra is not None:
             points.append(extra[0])
             nodes.append(extra[1])

@@ -163,6 +163,11 @@ class SurfaceContact(Contact):
     integration: string(one_of(("nodal", "gauss"), '"nodal" (the paper) or "gauss" (Gauss points of the slave '
                                                    'facets)')) = "nodal"
     capture: number(NON_NEGATIVE, LENGTH) = 0.0
+    #: "smooth": the master's facets carry averaged nodal normals; slave points are projected along
+    #: them and pressed along them (no force jump where a point crosses a facet edge; linear
+    #: elements)
+    master_surface: string(one_of(("faceted", "smooth"), '"faceted" (closest point on the facets, the paper) '
+                                                         'or "smooth" (along averaged nodal normals)')) = "faceted"
 
     @root_validator(skip_on_failure=True)
     def supported_pairing(cls, values):
