@@ -80,6 +80,18 @@ Eigen::Vector3d nodal_normal_value(std::int32_t node, const NodeFacets& at,
   return unnormalised(node, at, facets, x).normalized();
 }
 
+bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at,
+               const FacetConnectivity& facets, std::span<const double> x) {
+  const auto a = static_cast<std::size_t>(node);
+  const Eigen::Vector3d xa = node_x(x, node);
+  for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
+    const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
+    const Eigen::Vector3d corner = (node_x(x, next) - xa).cross(node_x(x, prev) - xa);
+    if (!(corner.dot(m) > 0.7 * corner.norm())) return true;
+  }
+  return false;
+}
+
 NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetConnectivity& facets,
                          std::span<const double> x) {
   const Eigen::Vector3d mt = unnormalised(node, at, facets, x);

@@ -5,9 +5,7 @@
 // point's friction history if any), and the faceted element where the smooth one is not defined.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <algorithm>
-#include <span>
 #include <hypercontact/smooth_master.hpp>
 #include <hypercontact/surface_contact.hpp>
 #include <hypercontact/surface_contact_friction.hpp>
@@ -16,27 +14,6 @@
 #include "surface_point.hpp"
 
 namespace hypercontact::detail {
-
-/// A node where a facet's corner normal is more than 45° (cos < 0.7) from the averaged nodal
-/// normal: a crease (a folded hinge, a corner of the body), where the averaged normal represents
-/// no facet and the normal field turns over a facet (or cancels): facets with such a node keep the
-/// faceted element.
-inline bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at,
-                      const FacetConnectivity& facets, std::span<const double> x) {
-  const auto a = static_cast<std::size_t>(node);
-  const int k = facets.corners();
-  const Eigen::Vector3d xa = Eigen::Map<const Eigen::Vector3d>(&x[3 * a]);
-  for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
-    const auto f = static_cast<std::size_t>(at.facet[static_cast<std::size_t>(i)]);
-    const int c = at.corner[static_cast<std::size_t>(i)];
-    const auto next = static_cast<std::size_t>(facets.node(f, (c + 1) % k));
-    const auto prev = static_cast<std::size_t>(facets.node(f, (c + k - 1) % k));
-    const Eigen::Vector3d corner = (Eigen::Map<const Eigen::Vector3d>(&x[3 * next]) - xa)
-                                       .cross(Eigen::Map<const Eigen::Vector3d>(&x[3 * prev]) - xa);
-    if (!(corner.dot(m) > 0.7 * corner.norm())) return true;
-  }
-  return false;
-}
 
 /// Evaluates every slave point of `in` against the smooth master: records the pairing in s and
 /// appends each closed point's element to `elements`. With `fin` (and `fs`, the same object as s)

@@ -51,6 +51,13 @@ Eigen::Vector3d nodal_normal_value(std::int32_t node, const NodeFacets& at,
 NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetConnectivity& facets,
                          std::span<const double> x);
 
+/// Whether node a is a crease: a corner normal (x_next − x_a) × (x_prev − x_a) of one of its
+/// facets more than 45° (cos < 0.7) from m, its unit nodal normal — a folded hinge, a corner of the
+/// body, where the averaged normal represents no facet and the normal field turns over a facet
+/// (or cancels). The smooth evaluation keeps the faceted element on facets with such a node.
+bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at,
+               const FacetConnectivity& facets, std::span<const double> x);
+
 /// The projection of x_s onto a facet along its normal field: ξ and t with
 ///   x_s = x_M(ξ) + t m(ξ),  x_M(ξ) = Σ N_a(ξ) x_a,  m(ξ) = Σ N_a(ξ) m_a
 /// (m_a the facet's nodal normals; m(ξ) is not a unit vector: the signed distance along the

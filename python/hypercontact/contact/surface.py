@@ -199,6 +199,14 @@ class SurfacePairing:
         facet_normal = normal / np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-300)
         return node_normal, facet_normal
 
+    def _incidence(self):
+        """The contact node × master facet incidence (sparse, 1 where the node is on the facet)."""
+        from scipy import sparse
+
+        rows = self.facets.ravel()
+        cols = np.repeat(np.arange(len(self.facets)), self.facets.shape[1])
+        return sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(self.X), len(self.facets)))
+
     def _self_contact_exclusion(self, corners):
         """Self-contact: what excludes a (slave node, facet) pair from the search — the facets
         that touch the node's own facets (its facets and their neighbours, by a shared node: a
@@ -208,24 +216,14 @@ class SurfacePairing:
         the two inner walls of a flattened tube). The facing test is made on the current
         configuration, not the reference one: points of a tube's inner wall 60° apart face each
         other once the tube is flat, not before. Returns (ring, incidence, corners)."""
-        from scipy import sparse
-
-        n_nodes, n_facets = len(self.X), len(self.facets)
-        rows = self.facets.ravel()
-        cols = np.repeat(np.arange(n_facets), self.facets.shape[1])
-        incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_nodes, n_facets))
+        incidence = self._incidence()
         ring = (incidence @ incidence.T) @ incidence  # node → facets sharing a node with its facets
         return ring.tocsr(), incidence, corners
 
     def _facet_stencils(self):
         """Smooth master: per facet, the nodes of every facet that shares a node with it (its
         nodal normals are made of them), as CSR (offsets, nodes)."""
-        from scipy import sparse
-
-        n_nodes, n_facets = len(self.X), len(self.facets)
-        rows = self.facets.ravel()
-        cols = np.repeat(np.arange(n_facets), self.facets.shape[1])
-        incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_nodes, n_facets))
+        incidence = self._incidence()
         stencil = ((incidence.T @ incidence) @ incidence.T).tocsr()  # facet → nodes of its neighbours
         stencil.sort_indices()
         return stencil.indptr.astype(np.int64), stencil.indices.astype(np.int32)
