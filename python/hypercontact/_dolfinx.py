@@ -247,12 +247,26 @@ def cell_node_centres(V, cells):
     return np.array([X[v2n[c2v.links(c)]].mean(axis=0) for c in cells]).reshape(len(cells), 3)
 
 
-def dirichlet_component(V, component, facets, value=None):
-    """Condition u_component = value (a Constant, or 0) on the facets."""
-    tdim = V.mesh.topology.dim
+def dirichlet_component(V, component, entities, value=None, dim=None):
+    """Condition u_component = value (a Constant, or 0) on the mesh entities
+    of dimension dim (default: facets)."""
     Vc = V.sub(component)
-    dofs = fem.locate_dofs_topological(Vc, tdim - 1, facets)
+    dofs = fem.locate_dofs_topological(Vc, V.mesh.topology.dim - 1 if dim is None else dim, entities)
     return fem.dirichletbc(value if value is not None else PETSc.ScalarType(0), dofs, Vc)
+
+
+def vertices_at(mesh, point, tol_factor=1e-8):
+    """(process-local mesh vertices at ``point``, distance from ``point`` to
+    the nearest vertex of any process): within tol_factor × the mesh's extent
+    (no vertex: an empty array)."""
+    x = mesh.geometry.x
+    lo = [mesh.comm.allreduce(float(x[:, a].min()) if len(x) else np.inf, MPI.MIN) for a in range(3)]
+    hi = [mesh.comm.allreduce(float(x[:, a].max()) if len(x) else -np.inf, MPI.MAX) for a in range(3)]
+    tol = tol_factor * max(max(h - l for l, h in zip(lo, hi)), 1e-300)
+    p = np.asarray(point, dtype=float).reshape(3, 1)
+    vertices = dolfinx.mesh.locate_entities(mesh, 0, lambda y: np.linalg.norm(y - p, axis=0) <= tol)
+    nearest = float(np.linalg.norm(x.T - p, axis=0).min()) if len(x) else np.inf
+    return vertices, mesh.comm.allreduce(nearest, MPI.MIN)
 
 
 def bc_dofs(bc):

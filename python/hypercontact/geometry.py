@@ -312,19 +312,21 @@ def _graded(k, g):
     return t ** g if g > 0 else 1.0 - (1.0 - t) ** (-g)
 
 
-def tube_arrays(inner_radius, thickness, length, n, m, layers, angles, grading=(1.0, 1.0, 1.0)):
+def tube_arrays(inner_radius, thickness, length, n, m, layers, angles, grading=(1.0, 1.0, 1.0), ovality=0.0):
     """A sector of a hollow circular cylinder about the z axis, structured
     hexahedra: radius inner_radius … inner_radius + thickness (m cells), polar
     angle angles[0] … angles[1] in degrees from +x towards +y (n cells), z
     from 0 to length (layers cells). The box [r_i, r_o] × [θ0, θ1] × [0, L]
     mapped by (r, θ, z) → (r cos θ, r sin θ, z), which keeps the hexahedra's
     orientation. Surfaces "inner", "outer", "start" (θ0), "end" (θ1), "zmin",
-    "zmax"."""
+    "zmax". An ovality Δ0 scales each radius by 1 + Δ0 cos 2θ (the diameters
+    along x and y 1 ± Δ0 times the round tube's)."""
     axes = [inner_radius + thickness * _graded(m, grading[0]),
             np.radians(angles[0] + (angles[1] - angles[0]) * _graded(n, grading[1])),
             length * _graded(layers, grading[2])]
     rtz, hexes, hex_names, quads, quad_names = structured_arrays(axes)
     r, t, z = rtz.T
+    r = r * (1.0 + ovality * np.cos(2.0 * t))
     x = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
     # sin and cos of multiples of 90° to the last bit: nodes on x = 0 or y = 0 lie on the plane
     x[np.abs(x) < 1e-14 * (inner_radius + thickness)] = 0.0
@@ -368,7 +370,8 @@ def _builder_arrays(spec):
         return x, tets, list(np.repeat(hex_names, 6)), triangles, list(np.repeat(quad_names, 2))
     if spec["builder"] == "tube":
         return tube_arrays(spec["inner_radius"], spec["thickness"], spec["length"], spec["n"], spec["m"],
-                           spec["layers"], spec["angles"], spec.get("grading", (1.0, 1.0, 1.0)))
+                           spec["layers"], spec["angles"], spec.get("grading", (1.0, 1.0, 1.0)),
+                           spec.get("ovality", 0.0))
     if spec["builder"] == "hemisphere":
         if min(grading) < 1.0:
             raise ValueError(f"hemisphere: grading must be >= 1 (towards the pole), found {grading}")

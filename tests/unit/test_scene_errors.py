@@ -22,7 +22,7 @@ def message(data, **kwargs):
 @pytest.mark.parametrize("data, expected", [
     ({"material": LAW, "stepz": {}}, "scene key 'stepz': unknown key; did you mean 'steps'?"),
     ({"material": LAW, "mesh": {"zz": 1}}, "scene key 'mesh.zz': unknown key; valid keys: builder, inner_radius, "
-                                           "thickness, size, origin, n, m, grading, focus, cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, file, perturbation"),
+                                           "thickness, size, origin, n, m, grading, focus, cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, ovality, file, perturbation"),
     ({"material": LAW, "mesh": 3}, "scene key 'mesh': expected a table, found 3 (int)"),
     ({"material": LAW, "bc": 3}, "scene key 'bc': expected an array of tables ([[bc]]), found 3 (int)"),
     ({"material": LAW, "mesh": {"n": "16"}}, "scene key 'mesh.n': expected an integer, found '16' (str)"),
@@ -34,7 +34,9 @@ def message(data, **kwargs):
      "scene key 'mesh.size': expected a list of three numbers, found [1, 2] (list)"),
     ({"material": LAW, "output": {"xdmf": 1}}, "scene key 'output.xdmf': expected true or false, found 1 (int)"),
     ({"material": LAW, "bc": [{"surface": "zmin", "fix": ["x"]}, {"fix": ["y"]}]},
-     "scene key 'bc[1].surface': missing (required)"),
+     "scene key 'bc[1].surface': expected either a surface or a point (the node a bc holds), found neither"),
+    ({"material": LAW, "bc": [{"surface": "zmin", "point": [0, 0, 0], "fix": ["x"]}]},
+     "scene key 'bc[0].surface': expected either a surface or a point (the node a bc holds), found both"),
     ({"material": LAW, "output": {"probes": {"p": [0.0, 0.0, float("nan")]}}},
      "scene key 'output.probes.p': expected a list of three finite numbers, found [0.0, 0.0, nan] (list)"),
     ({"material": LAW, "solver": {"petsc": {"ksp_type": "gmress"}}},
@@ -44,7 +46,7 @@ def message(data, **kwargs):
      "scene key 'body[0].material.parameters.mu': expected a shear modulus > 0, found -1.0 (float)"),
     ({"material": LAW, "mesh": {"a\nb": 1}},
      "scene key 'mesh.a\\nb': unknown key; valid keys: builder, inner_radius, thickness, size, origin, n, m, grading, focus, "
-     "cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, file, perturbation"),
+     "cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, ovality, file, perturbation"),
     ({"mesh": {}}, "scene key 'material': missing (required)"),
 ])
 def test_the_message_names_the_key_path(data, expected):
@@ -55,7 +57,8 @@ def test_defaults_are_filled_and_numbers_are_floats():
     sc = scene.load({"material": LAW, "mesh": {"size": [2, 2, 1]}, "bc": {"surface": "zmin", "fix": ["z"]}})
     assert sc["mesh"]["size"] == [2.0, 2.0, 1.0] and all(type(v) is float for v in sc["mesh"]["size"])
     assert sc["mesh"]["n"] == 4 and sc["steps"]["initial"] == 0.1 and sc["solver"]["petsc"] == {}
-    assert sc["bc"] == [{"name": "", "surface": "zmin", "fix": ["z"], "motion": [0.0, 0.0, 0.0]}]  # an array of one
+    assert sc["bc"] == [{"name": "", "surface": "zmin", "point": None, "fix": ["z"],
+                         "motion": [0.0, 0.0, 0.0]}]  # an array of one
     assert sc["contact"] == [] and sc["title"] == ""
 
 

@@ -3,9 +3,11 @@ conditions on the fixed components and the loads (follower pressures, dead
 tractions, body forces), each value a Constant; q = ∂R/∂λ for continuation."""
 import numpy as np
 import ufl
+from mpi4py import MPI
 
 from .. import _dolfinx as dfx
 from ..forms import loads
+from ..scene import SceneError
 from ..scene.path import AXIS, LOADS
 
 
@@ -18,10 +20,18 @@ class Constraints:
     def __init__(self, scene, w, displacement_space, facet_tags, tag_of, mesh):
         self.bcs, self.values = [], {}
         for i, bc in enumerate(scene["bc"]):
-            facets = dfx.facets_with_tag(facet_tags, tag_of(bc["surface"], f"bc[{i}].surface"))
+            if bc.get("point") is not None:
+                entities, nearest = dfx.vertices_at(mesh, bc["point"])
+                if mesh.comm.allreduce(len(entities), MPI.SUM) == 0:
+                    raise SceneError(f"scene key 'bc[{i}].point': no mesh node at {bc['point']} "
+                                     f"(nearest is {nearest:.3g} away)")
+                dim = 0
+            else:
+                entities = dfx.facets_with_tag(facet_tags, tag_of(bc["surface"], f"bc[{i}].surface"))
+                dim = mesh.topology.dim - 1
             for a in bc["fix"]:
                 value = dfx.constant(mesh, 0.0)
-                self.bcs.append(dfx.dirichlet_component(displacement_space, AXIS[a], facets, value))
+                self.bcs.append(dfx.dirichlet_component(displacement_space, AXIS[a], entities, value, dim))
                 self.values[(i, a)] = value
         self.constrained = np.zeros(w.x.array.size, dtype=bool)
         for bc in self.bcs:

@@ -47,6 +47,10 @@ class Mesh(SceneModel):
     length: number(POSITIVE, LENGTH) = 1.0
     layers: integer(POSITIVE) = 1
     angles: pair() = [0.0, 90.0]
+    #: the tube builder's initial ovality Δ0 = (D_max − D_min)/(D_max + D_min): each radius scaled by
+    #: 1 + Δ0 cos 2θ, the long axis along x for Δ0 > 0 (along y for Δ0 < 0); the imperfection that
+    #: turns a tube's buckling under external pressure from a bifurcation into a smooth path
+    ovality: number(from_to(-0.5, 0.5)) = 0.0
     file: string(FILE_NAME) = ""
     #: random node displacements of this fraction of the smallest cell's size (fixed per node):
     #: a check that results move continuously with the data, not a modelling feature

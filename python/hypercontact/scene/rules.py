@@ -101,6 +101,8 @@ def surfaces_exist(s):
         return
     for section in ("bc", "pressure", "traction", "contact"):
         for i, entry in enumerate(getattr(s, section)):
+            if section == "bc" and entry.point is not None:
+                continue
             _known_surface((section, i, "surface"), entry.surface, named)
             if isinstance(entry, SurfaceContact):
                 for master in entry.masters():

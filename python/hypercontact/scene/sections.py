@@ -67,13 +67,23 @@ class BodyForce(SceneModel):
 
 
 class BoundaryCondition(SceneModel):
-    """u_a = λ × motion_a on a surface, for the fixed axes a (with [[phase]]:
-    the phases move it)."""
+    """u_a = λ × motion_a on a surface, or at the mesh node at a point, for
+    the fixed axes a (with [[phase]]: the phases move it)."""
 
     name: string(ENTRY_NAME) = ""
-    surface: string()
+    surface: string() = ""
+    #: instead of a surface: the mesh node at this point (within 1e-8 of the mesh's size), e.g. a pin
+    #: that takes out a rigid translation a symmetric load leaves free
+    point: Optional[vector(COORDINATES)] = None
     fix: strings(AXES)
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]
+
+    @root_validator(skip_on_failure=True)
+    def surface_or_point(cls, values):
+        if bool(values["surface"]) == (values["point"] is not None):
+            raise Invalid("expected either a surface or a point (the node a bc holds), found "
+                          + ("both" if values["surface"] else "neither"), "surface")
+        return values
 
     @root_validator(skip_on_failure=True)
     def moves_only_what_it_holds(cls, values):
