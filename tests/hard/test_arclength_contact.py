@@ -391,7 +391,7 @@ def test_a_cut_back_leaves_no_trace_in_the_friction_history(tmp_path, monkeypatc
         return untouched(lambda: original(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it,
                                           **kw))
 
-    ends = []
+    ends, stories = [], {}
     for name, wrapper in (("failing", failing), ("halved", halved)):
         calls["n"] = 0
         monkeypatch.setattr(path_following, "continuation_step", wrapper)
@@ -403,6 +403,13 @@ def test_a_cut_back_leaves_no_trace_in_the_friction_history(tmp_path, monkeypatc
         assert rec.writer.steps[target - 1]["wall_slip_nodes"] > 0
         ends.append((rec.sim.u.x.array.copy(), c.law.history.positions.copy(), c.law.history.traction.copy(), c.law.dissipation,
                      rec.column("load_factor")))
+        stories[name] = rec.writer.failed_attempts
+    # the cut-back's story is on disk (summary.json): which step, from where, what size, why
+    [story] = stories["failing"]
+    assert (story["step"], story["attempt"], story["reason"], story["outcome"]) == (target, 0, "forced by the test",
+                                                                                    "cut back")
+    assert story["load_factor"] == pytest.approx(rec.column("load_factor")[target - 2], rel=1e-12)
+    assert stories["halved"] == []
     (u1, xi1, t1, d1, lam1), (u2, xi2, t2, d2, lam2) = ends
     assert len(lam1) == len(lam2) and np.allclose(lam1, lam2, rtol=1e-12, atol=0)
     assert np.abs(u1 - u2).max() <= 1e-10 * np.abs(u2).max()

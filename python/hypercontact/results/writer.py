@@ -24,7 +24,10 @@
   contact, flips, reference ``point`` and ``current`` coordinates at the
   last iterate), the augmentations, and, when its last iterate has
   det F ≤ 0 somewhere, ``inverted_element`` (input cell index, reference
-  centroid, min J).
+  centroid, min J). Under continuation one entry per failed step attempt:
+  step and attempt numbers, λ at its start, the step ``size`` tried (arc
+  length or controlled displacement), ``reason`` (why the bordered Newton
+  solve gave up) and ``outcome``.
 - ``curves.png``, ``deformed.png``: see :mod:`.drawing`.
 """
 import contextlib

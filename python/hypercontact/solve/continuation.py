@@ -10,6 +10,8 @@ K = ∂R/∂u once and solves twice (bordering):
 with δλ from the constraint:
 - arc length (Crisfield, cylindrical): |Δu + δu|² = Δl², a quadratic in δλ
   whose root keeps the increment pointing forward (largest Δu_old·Δu_new);
+  a converged step whose increment points against the last step's went
+  back along the path and is refused;
 - displacement control: e·(Δu + δu) = Δs for one controlled dof e.
 
 PETSc 3.18 has no arc-length SNES; this is the project's own.
@@ -118,6 +120,21 @@ class ArcLengthConstraint:
         scores = [w.dot(Du_old) + r * t.dot(Du_old) for r in roots]
         return roots[int(np.argmax(scores))]
 
+    def check_forward(self, Du, du_prev):
+        """A converged increment must not point against the last step's:
+        the sphere |Δu| = Δl meets the path ahead of the start and behind
+        it, and Newton iterates thrown about by contact changes can land on
+        the point behind, which retraces the path with λ falling (a tube
+        squeezed flat by pressure went back to round that way: the point
+        behind looked like a limit point). At a true limit point Δλ changes
+        sign, Δu does not turn back."""
+        if du_prev is None:
+            return
+        cos = Du.dot(du_prev) / max(Du.norm() * du_prev.norm(), 1e-300)
+        if cos < 0.0:
+            raise ContinuationFailure(f"the step converged behind its start on the path (its increment "
+                                      f"points against the last step's, cos = {cos:.3f})")
+
     def scale(self, factor):
         self.size *= factor
 
@@ -143,8 +160,24 @@ class DisplacementConstraint:
     def correction(self, Du, du_R, t, Du_old):
         return (self.size - self._component(Du) - self._component(du_R)) / self._component(t)
 
+    def check_forward(self, Du, du_prev):
+        """The controlled component moves forward by construction."""
+
     def scale(self, factor):
         self.size *= factor
+
+
+def two_cycle(norms, repeats=2, rtol=1e-2, apart=2.0):
+    """Whether the last residual norms alternate between two values (each
+    repeated ``repeats`` times to ``rtol``, the two ``apart`` × apart):
+    Newton flipping contact points between open and closed, a cycle more
+    iterations do not leave (a step cut short the same way converges)."""
+    n = 2 * repeats + 1
+    if len(norms) < n:
+        return False
+    last = norms[-n:]
+    same = all(abs(last[k] - last[k + 2]) <= rtol * max(last[k], last[k + 2]) for k in range(n - 2))
+    return same and max(last[-1], last[-2]) >= apart * min(last[-1], last[-2])
 
 
 def step(bordered, constraint, x, lam, du_prev, set_load_factor, rtol, atol, max_it, tangent=None,
@@ -198,9 +231,13 @@ def _step(bordered, constraint, x, x0, lam, du_prev, set_load_factor, rtol, atol
         qnorm = bordered.q.norm() * max(abs(lam + dlam), 1e-300)
         bordered.tolerance = max(rtol * max(reference, qnorm), atol)
         if it > 0 and rnorm <= bordered.tolerance:
+            constraint.check_forward(Du, du_prev)
             return Du, dlam, it, norms
         if it == max_it:
             break
+        if two_cycle(norms):
+            raise ContinuationFailure(f"Newton two-cycles at iteration {it} (|R| alternates {norms[-2]:.3e} / "
+                                      f"{norms[-1]:.3e}: contact points flip between open and closed)")
         t = bordered.tangent_direction()
         du_R = bordered.newton_correction()
         Du_old = Du.copy()

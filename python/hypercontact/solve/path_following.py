@@ -242,7 +242,11 @@ class PathFollowing:
             except ContinuationFailure as err:
                 self._take(x)  # the failed iterates passed through the unknown
                 too_small = 0.5 * abs(constraint.size) < st["min"] * abs(size0)
-                if cuts >= st["max_cutbacks"] or too_small:
+                stop = cuts >= st["max_cutbacks"] or too_small
+                observer.failed({"step": observer.steps_written() + 1, "attempt": cuts, "load_factor": lam,
+                                 "size": float(constraint.size), "reason": str(err),
+                                 "outcome": "stopped" if stop else "cut back"})
+                if stop:
                     self.log(f"   {constraint.name} step from λ = {lam:.5g} failed ({err}); no cut-back left")
                     why = ("its size would fall below steps.min × the first step's" if too_small
                            else f"after {cuts} cut-back{'s' * (cuts != 1)}")
