@@ -10,19 +10,22 @@ from .. import _dolfinx as dfx
 
 
 def curve_columns(w):
-    """(x, ys) drawn in curves.png: the contact forces (each contact's
-    largest component) against the first contact's displacement (with
-    phases: against the accumulated parameter τ, ``time``); without
-    contacts, the pressures (else the load factor) against the stop
-    probe's controlled component, or the first probe's largest one."""
+    """(x, ys) drawn in curves.png: under continuation, the path it
+    follows: the pressures (else the load factor) against the stop probe's
+    controlled component; else the contact forces (each contact's largest
+    component) against the first contact's displacement (with phases:
+    against the accumulated parameter τ, ``time``); without contacts, the
+    pressures (else the load factor) against the first probe's largest
+    displacement component."""
     def largest(columns):
         return max(columns, key=lambda c: max(abs(s[c]) for s in w.steps))
 
-    if w.contacts:
+    st = w.scene["steps"]
+    continuation = st.get("control", "load") != "load" and st.get("stop_probe") in w.probes
+    if w.contacts and not continuation:
         x = f"{w.contacts[0].name}_displacement" if w.path.implicit else "time"
         return x, [largest([f"{c.name}_f{a}" for a in "xyz"]) for c in w.contacts]
-    st = w.scene["steps"]
-    if st.get("control", "load") != "load" and st.get("stop_probe") in w.probes:
+    if continuation:
         x = f"{st['stop_probe']}_u{st['stop_component']}"
     elif w.probes:
         x = largest([f"{next(iter(w.probes))}_u{a}" for a in "xyz"])
