@@ -9,6 +9,9 @@ class Timers:
     def __init__(self):
         self.seconds = {}
         self.calls = {}
+        #: what the linear solver did (load control; inside "linear solve", not a phase of its own):
+        #: preconditioner set-ups (or factorisations), their time and the Krylov (or triangular) solves' time
+        self.linear = {}
 
     @contextmanager
     def __call__(self, phase):

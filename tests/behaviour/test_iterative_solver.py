@@ -57,8 +57,15 @@ def test_krylov_iterations_are_reported_per_step(tmp_path):
             rows = list(csv.DictReader(f))
         krylov = [int(r["linear_iterations"]) for r in rows]
         newton = [int(r["newton_iterations"]) for r in rows]
-        assert json.loads((out / "summary.json").read_text())["linear_iterations"] == krylov
+        summary = json.loads((out / "summary.json").read_text())
+        assert summary["linear_iterations"] == krylov
         assert sum(krylov) == sum(sim.linear_iterations)  # no failed attempt in this run
+        # one preconditioner set-up (factorisation) per tangent, i.e. per Newton iteration; their time
+        # and the Krylov solves' are inside the run's linear solve time
+        linear_solver = summary["linear_solver"]
+        assert linear_solver["kind"] == linear and linear_solver["preconditioner_setups"] == sum(newton)
+        assert 0 < linear_solver["preconditioner_setup_s"] + linear_solver["krylov_s"] \
+            <= summary["time_split"]["linear solve"] * (1 + 1e-9)
         if linear == "direct":
             assert krylov == newton
         else:

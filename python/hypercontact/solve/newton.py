@@ -150,8 +150,11 @@ def linear_solver_options(solver, num_unknowns, symmetric=False):
     (MUMPS: LDLᵀ where the tangent is ``symmetric``, measured 0.74× the LU's
     linear-solve time on the 32×32×8 punch, else LU), "iterative" (GMRES,
     right-preconditioned by smoothed-aggregation AMG with the rigid-body modes
-    as near-nullspace, its interpolation reused across Newton iterations (-23 %
-    measured); GMRES because friction and follower loads make the tangent
+    as near-nullspace, set up afresh at every Newton iteration: reusing the
+    first iteration's interpolation doubled the Krylov count on the punch
+    (51 → 34 and 59 → 31 per Newton iteration at 29k and 215k unknowns) and
+    cost 10–20 % more time than the set-ups it saved (docs/performance.md);
+    GMRES because friction and follower loads make the tangent
     non-symmetric, and a symmetric one is indefinite past a limit point), or
     "auto": direct up to solver.direct_max_unknowns, iterative above (a direct
     factorisation's memory and time grow faster than linearly in 3D)."""
@@ -165,7 +168,7 @@ def linear_solver_options(solver, num_unknowns, symmetric=False):
                   "ksp_rtol": 1e-8, "ksp_max_it": 1000, "pc_type": "gamg",
                   "pc_gamg_coarse_eq_limit": 1000, "mg_levels_ksp_type": "chebyshev",
                   "mg_levels_pc_type": "jacobi", "mg_levels_ksp_max_it": 3,
-                  "pc_gamg_reuse_interpolation": True}
+                  "pc_gamg_reuse_interpolation": False}
 
 
 def rigid_body_modes(V, A):

@@ -97,8 +97,10 @@ class Run:
 
     def _start(self):
         PETSc.Log.begin()
-        self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
+        self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval",
+                                                                  "PCSetUp", "KSPSolve")}
         self._t0 = {name: e.getPerfInfo()["time"] for name, e in self._events.items()}
+        self._jacobians0 = self._events["SNESJacobianEval"].getPerfInfo()["count"]
         self._started, self._progress0 = time.perf_counter(), 0.0
 
     def split(self):
@@ -109,6 +111,11 @@ class Run:
             t = {name: e.getPerfInfo()["time"] - self._t0[name] for name, e in self._events.items()}
             self.timers.seconds["linear solve"] = max(t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"],
                                                       0.0) + self.bordered_timers.get("linear solve")
+            # PETSc sets the preconditioner up (or factorises) once per tangent, before the Krylov solve
+            self.timers.linear = {
+                "kind": self.model.problem.linear_kind,
+                "preconditioner_setups": self._events["SNESJacobianEval"].getPerfInfo()["count"] - self._jacobians0,
+                "preconditioner_setup_s": t["PCSetUp"], "krylov_s": t["KSPSolve"]}
         return self.timers
 
     def eta(self, progress):
