@@ -53,10 +53,36 @@ def run(n, mu, out, extra):
         print(json.dumps({k: v for k, v in row.items() if k != "newton_per_step"}), flush=True)
 
 
+def partial_rows(out, done):
+    """Rows of runs stopped before the end of the path (killed: a size too big for the time
+    at hand), from the summary.json each converged step rewrote; marked partial."""
+    import re
+
+
+    rows = []
+    for folder in sorted(out.glob("n*_mu*_np*")):
+        n, mu, ranks = re.fullmatch(r"n(\d+)_mu([\d.]+)_np(\d+)", folder.name).groups()
+        key = (int(n), float(mu), int(ranks))
+        summary = folder / "summary.json"
+        if key in done or not summary.exists():
+            continue
+        sm = json.loads(summary.read_text())
+        if not sm["steps"]:
+            continue
+        unknowns = 3 * (key[0] + 1) ** 2 * (max(key[0] // 4, 1) + 1)  # the box's Q1 nodes, 3 components
+        rows.append({"n": key[0], "mu": key[1], "ranks": key[2], "unknowns": unknowns, "steps": len(sm["steps"]),
+                     "newton": sum(sm["newton_iterations"]), "krylov": sum(sm["linear_iterations"]),
+                     "wall_s": sm["wall_time"], "time_split": sm["time_split"], "linear_solver": sm["linear_solver"],
+                     "peak_MiB_all_ranks": sm["peak_memory_mb"]["sum_ranks"], "force": -sm["steps"][-1]["punch_fz"],
+                     "partial": f"stopped after step {len(sm['steps'])}, λ = {sm['steps'][-1]['load_factor']:.2f}"})
+    return rows
+
+
 def report(out):
     import numpy as np
 
     rows = [json.loads(line) for line in (out / "ladder.jsonl").read_text().splitlines() if line.strip()]
+    rows += partial_rows(out, {(r["n"], r["mu"], r["ranks"]) for r in rows})
     rows.sort(key=lambda r: (r["mu"], r["ranks"], r["unknowns"]))
     lines = ["| μ1 | ranks | unknowns | steps | Newton its | Krylov / Newton | s / Newton | volume asm | contact "
              "| PC set-up | Krylov | rest | peak MiB | bytes / unknown | punch force (N) | wall (s) |",
@@ -69,10 +95,13 @@ def report(out):
         lines.append(f"| {r['mu']:g} | {r['ranks']} | {r['unknowns']:,} | {r['steps']} | {k} | {r['krylov'] / k:.1f} | "
                      f"{per:.2f} | " + " | ".join(f"{p / k:.2f}" for p in parts) + f" | {per - sum(parts) / k:.2f} | "
                      f"{r['peak_MiB_all_ranks']:.0f} | {r['peak_MiB_all_ranks'] * 2**20 / r['unknowns']:.0f} | "
-                     f"{r['force']:.2f} | {r['wall_s']:.0f} |")
+                     f"{r['force']:.2f}{' (partial)' if 'partial' in r else ''} | {r['wall_s']:.0f} |")
+    notes = [f"- {r['unknowns']:,} unknowns, μ1 = {r['mu']:g}, {r['ranks']} rank(s): {r['partial']} "
+             "(the force is that step's)" for r in rows if "partial" in r]
     text = ["# The punch ladder: the whole 2 mm path, iterative solver", "",
             "Per Newton iteration, in seconds: volume assembly (tangent and residual), contact (and search), "
             "the AMG set-up, the Krylov solves, and the rest (line search, output, set-up of the run).", ""] + lines
+    text += (["", "Partial runs (killed before the end of the path):"] + notes) if notes else []
     (out / "ladder.md").write_text("\n".join(text) + "\n")
     print("\n".join(text))
     import matplotlib

@@ -60,12 +60,15 @@ def test_krylov_iterations_are_reported_per_step(tmp_path):
         summary = json.loads((out / "summary.json").read_text())
         assert summary["linear_iterations"] == krylov
         assert sum(krylov) == sum(sim.linear_iterations)  # no failed attempt in this run
-        # one preconditioner set-up (factorisation) per tangent, i.e. per Newton iteration; their time
-        # and the Krylov solves' are inside the run's linear solve time
+        # one preconditioner set-up (factorisation) per tangent, i.e. per Newton iteration; with GMRES
+        # the set-ups' time and the Krylov iterations' are measured (parts of the run's wall time)
         linear_solver = summary["linear_solver"]
         assert linear_solver["kind"] == linear and linear_solver["preconditioner_setups"] == sum(newton)
-        assert 0 < linear_solver["preconditioner_setup_s"] + linear_solver["krylov_s"] \
-            <= summary["time_split"]["linear solve"] * (1 + 1e-9)
+        if linear == "iterative":
+            setup, krylov_s = linear_solver["preconditioner_setup_s"], linear_solver["krylov_s"]
+            assert setup > 0 and krylov_s > 0 and setup + krylov_s <= summary["wall_time"]
+        else:
+            assert linear_solver["preconditioner_setup_s"] is None and linear_solver["krylov_s"] is None
         if linear == "direct":
             assert krylov == newton
         else:

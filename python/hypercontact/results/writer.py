@@ -207,7 +207,8 @@ class ResultsWriter:
                                "sum_ranks": self.comm.allreduce(peak_mb, op=MPI.SUM)},
             "newton_iterations": [s["newton_iterations"] for s in self.steps],
             "linear_iterations": [s.get("linear_iterations") for s in self.steps],
-            "linear_solver": {k: (self.comm.allreduce(v, op=MPI.MAX) if isinstance(v, (int, float)) else v)
+            "linear_solver": {k: (self.comm.allreduce(v, op=MPI.MAX) if isinstance(v, (int, float)) and v is not None
+                                  else v)
                               for k, v in getattr(timers, "linear", {}).items()},
             "limit_points": self.limit_points, "fields": self.fields, "pictures": self.pictures,
             "phases": self.phases,

@@ -97,11 +97,10 @@ class Run:
 
     def _start(self):
         PETSc.Log.begin()
-        self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval",
-                                                                  "PCSetUp", "KSPSolve")}
+        self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         self._t0 = {name: e.getPerfInfo()["time"] for name, e in self._events.items()}
-        self._jacobians0 = self._events["SNESJacobianEval"].getPerfInfo()["count"]
         self._started, self._progress0 = time.perf_counter(), 0.0
+        self._linear_before = (0, 0.0, 0.0)
 
     def split(self):
         """The timers, with the linear solve = SNES time less residual and
@@ -111,12 +110,24 @@ class Run:
             t = {name: e.getPerfInfo()["time"] - self._t0[name] for name, e in self._events.items()}
             self.timers.seconds["linear solve"] = max(t["SNESSolve"] - t["SNESFunctionEval"] - t["SNESJacobianEval"],
                                                       0.0) + self.bordered_timers.get("linear solve")
-            # PETSc sets the preconditioner up (or factorises) once per tangent, before the Krylov solve
-            self.timers.linear = {
-                "kind": self.model.problem.linear_kind,
-                "preconditioner_setups": self._events["SNESJacobianEval"].getPerfInfo()["count"] - self._jacobians0,
-                "preconditioner_setup_s": t["PCSetUp"], "krylov_s": t["KSPSolve"]}
+            counts = self._linear_counts()
+            iterative = self.model.problem.linear_kind == "iterative"
+            self.timers.linear = {"kind": self.model.problem.linear_kind, "preconditioner_setups": counts[0],
+                                  "preconditioner_setup_s": counts[1] if iterative else None,
+                                  "krylov_s": counts[2] if iterative else None}
         return self.timers
+
+    def _linear_counts(self):
+        """(preconditioner set-ups, their seconds, Krylov seconds) of this run's load-control
+        Newton solves: the phases before (folded) and the current one's."""
+        newton = getattr(self.driver, "newton", None)
+        now = (newton.preconditioner_setups, newton.preconditioner_setup_s, newton.krylov_s) if newton else (0, 0, 0)
+        return tuple(a + b for a, b in zip(self._linear_before, now))
+
+    def _fold_linear_counts(self):
+        """A phase ends: its Newton solver's counts join those of the phases before."""
+        self._linear_before = self._linear_counts()
+        self.driver = None
 
     def eta(self, progress):
         """'  ~N s left', extrapolating the time since this run (or resume)
@@ -181,6 +192,7 @@ class Run:
                 resumed = state if state is not None and state.get("phase", 0) == k else None
                 if resumed is None:
                     model.set_path(k, 0.0)  # where the previous phase ended
+                self._fold_linear_counts()
                 self.driver = self._driver(k)
                 writer.start_phase(k)
                 if not model.path.implicit:
