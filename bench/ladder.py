@@ -78,6 +78,17 @@ def partial_rows(out, done):
     return rows
 
 
+def speed_up(row, serial):
+    """Wall time of the serial run over this run's, for the whole path; also per Newton
+    iteration when the Newton counts differ. "—" for serial rows and partial runs."""
+    if row["ranks"] == 1 or serial is None or "partial" in row:
+        return "—"
+    text = f"{serial['wall_s'] / row['wall_s']:.2f}"
+    if serial["newton"] != row["newton"]:
+        text += f" ({serial['wall_s'] / serial['newton'] / (row['wall_s'] / row['newton']):.2f} per Newton)"
+    return text
+
+
 def report(out):
     import numpy as np
 
@@ -85,8 +96,9 @@ def report(out):
     rows += partial_rows(out, {(r["n"], r["mu"], r["ranks"]) for r in rows})
     rows.sort(key=lambda r: (r["mu"], r["ranks"], r["unknowns"]))
     lines = ["| μ1 | ranks | unknowns | steps | Newton its | Krylov / Newton | s / Newton | volume asm | contact "
-             "| PC set-up | Krylov | rest | peak MiB | bytes / unknown | punch force (N) | wall (s) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| PC set-up | Krylov | rest | peak MiB | bytes / unknown | punch force (N) | wall (s) | speed-up |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    serial = {(r["n"], r["mu"]): r for r in rows if r["ranks"] == 1 and "partial" not in r}
     for r in rows:
         s, lin, k = r["time_split"], r["linear_solver"], r["newton"]
         parts = [s.get("volume assembly", 0), s.get("contact", 0) + s.get("contact search", 0),
@@ -95,12 +107,15 @@ def report(out):
         lines.append(f"| {r['mu']:g} | {r['ranks']} | {r['unknowns']:,} | {r['steps']} | {k} | {r['krylov'] / k:.1f} | "
                      f"{per:.2f} | " + " | ".join(f"{p / k:.2f}" for p in parts) + f" | {per - sum(parts) / k:.2f} | "
                      f"{r['peak_MiB_all_ranks']:.0f} | {r['peak_MiB_all_ranks'] * 2**20 / r['unknowns']:.0f} | "
-                     f"{r['force']:.2f}{' (partial)' if 'partial' in r else ''} | {r['wall_s']:.0f} |")
+                     f"{r['force']:.2f}{' (partial)' if 'partial' in r else ''} | {r['wall_s']:.0f} | "
+                     f"{speed_up(r, serial.get((r['n'], r['mu'])))} |")
     notes = [f"- {r['unknowns']:,} unknowns, μ1 = {r['mu']:g}, {r['ranks']} rank(s): {r['partial']} "
              "(the force is that step's)" for r in rows if "partial" in r]
     text = ["# The punch ladder: the whole 2 mm path, iterative solver", "",
             "Per Newton iteration, in seconds: volume assembly (tangent and residual), contact (and search), "
-            "the AMG set-up, the Krylov solves, and the rest (line search, output, set-up of the run).", ""] + lines
+            "the AMG set-up, the Krylov solves, and the rest (line search, output, set-up of the run). "
+            "Speed-up: the serial run's wall time over this run's, the whole path; a serial and a parallel "
+            "run compare only when they ran one after the other in the same file.", ""] + lines
     text += (["", "Partial runs (killed before the end of the path):"] + notes) if notes else []
     (out / "ladder.md").write_text("\n".join(text) + "\n")
     print("\n".join(text))
