@@ -4,6 +4,7 @@ Every mesh comes with named boundary surfaces (gmsh physical groups), which
 scenes refer to by name (e.g. ``slave = "zmax"``, ``surface = "xmin"``).
 """
 import difflib
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -250,21 +251,25 @@ def hemisphere_arrays(radius, n, m, center=(0.0, 0.0, 0.0), grading=(1.0, 1.0)):
     return X, hexes, ["body"] * len(hexes), np.concatenate(quads), names
 
 
-def graded_box_arrays(size, n, m, origin, grading, focus=None):
+def graded_box_arrays(size, n, m, origin, grading, focus=None, core=None):
     """A structured box like :func:`box_model` (n × n × m cells, surfaces
     xmin … zmax) with graded spacing: per axis, grading g > 1 clusters the
     cells towards the min side (coordinates ∝ t^g), g < −1 towards the max
     side, ±1 is uniform. With ``focus`` (a point), an axis with |g| > 1
     clusters them towards the focus's coordinate instead: from both sides if
     it lies inside the box (round(k c / L) of the k cells on the side below,
-    c its distance from the min side), else towards the side it lies on."""
+    c its distance from the min side), else towards the side it lies on.
+    With ``core`` (a length per axis, 0 for none), a graded axis has uniform
+    cells over that length on the side it clusters towards and graded cells
+    beyond (:func:`_cored`)."""
     axes = []
-    for axis, (L, o, k, g) in enumerate(zip(size, origin, (n, n, m), grading)):
+    core = [0.0, 0.0, 0.0] if core is None else core
+    for axis, (L, o, k, g, cl) in enumerate(zip(size, origin, (n, n, m), grading, core)):
         c = None if focus is None or abs(g) == 1.0 else focus[axis] - o
         if c is None:
-            axes.append(o + L * _graded(k, g))
+            axes.append(o + L * _cored(k, g, cl / L))
         elif c <= 0.0 or c >= L:
-            axes.append(o + L * _graded(k, abs(g) if c <= 0.0 else -abs(g)))
+            axes.append(o + L * _cored(k, abs(g) if c <= 0.0 else -abs(g), cl / L))
         else:
             below = int(min(max(round(k * c / L), 1), k - 1))
             axes.append(o + np.concatenate([c * _graded(below, -abs(g)),
@@ -304,6 +309,51 @@ def structured_arrays(axes):
 
 #: The tube builder's surfaces: the box's faces in (r, θ, z) and what they become.
 TUBE_SURFACES = {"xmin": "inner", "xmax": "outer", "ymin": "start", "ymax": "end", "zmin": "zmin", "zmax": "zmax"}
+
+
+#: the largest ratio of neighbouring cells' sizes a core split accepts
+CORE_GROWTH = 2.5
+
+
+def _cored(k, g, core):
+    """k + 1 points on [0, 1]: uniform cells over the fraction ``core`` of the
+    length on the side g clusters towards (0 for g > 1, 1 for g < −1), graded
+    beyond it by a shifted power law, (s + s0)^|g| rescaled, whose shift s0
+    makes its first cell as large as a core cell (the spacing grows without a
+    jump). The core gets as many of the k cells as it can while no cell is
+    more than CORE_GROWTH times its neighbour (else the smoothest split).
+    core = 0, |g| = 1 or k = 1: plain :func:`_graded`."""
+    if core <= 0.0 or abs(g) == 1.0 or k < 2:
+        return _graded(k, g)
+    if g < 0:
+        return 1.0 - _cored(k, -g, core)[::-1]
+
+    def graded(m, h):
+        s = np.linspace(0.0, 1.0, m + 1)
+
+        def first(s0):  # the first graded cell's size for shift s0
+            return (1.0 - core) * ((s[1] + s0) ** g - s0 ** g) / ((1.0 + s0) ** g - s0 ** g)
+
+        lo, hi = 0.0, 1e6
+        if first(lo) >= h:  # even unshifted the first cell is larger than a core cell
+            s0 = 0.0
+        else:
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if first(mid) < h else (lo, mid)
+            s0 = 0.5 * (lo + hi)
+        return core + (1.0 - core) * ((s + s0) ** g - s0 ** g) / ((1.0 + s0) ** g - s0 ** g)
+
+    def points(j):
+        return np.concatenate([np.linspace(0.0, core, j + 1), graded(k - j, core / j)[1:]])
+
+    def roughness(t):
+        h = np.diff(t)
+        return float(np.max(np.maximum(h[1:] / h[:-1], h[:-1] / h[1:])))
+
+    candidates = [points(j) for j in range(1, k)]
+    smooth = [t for t in candidates if roughness(t) <= CORE_GROWTH]
+    return smooth[-1] if smooth else min(candidates, key=roughness)
 
 
 def _graded(k, g):
@@ -363,7 +413,8 @@ def _builder_arrays(spec):
     grading = spec.get("grading", (1.0, 1.0, 1.0))
     if spec["builder"] == "box" and any(g != 1.0 for g in grading):
         x, hexes, hex_names, quads, quad_names = graded_box_arrays(spec["size"], spec["n"], spec["m"],
-                                                                   spec["origin"], grading, spec.get("focus"))
+                                                                   spec["origin"], grading, spec.get("focus"),
+                                                                   spec.get("core"))
         if spec.get("cells", "hexahedra") == "hexahedra":
             return x, hexes, hex_names, quads, quad_names
         tets, triangles = kuhn_tetrahedra(hexes, quads)

@@ -112,3 +112,50 @@ def test_a_bad_focus_is_refused_naming_the_key(keys, message):
             "material": {"law": "neo_hookean", "parameters": {"mu": 1.0, "K": 2.0}}}
     with pytest.raises(scene.SceneError, match=rf"mesh\.focus.*{message}"):
         scene.load(data)
+
+
+def test_a_core_keeps_uniform_cells_on_the_clustered_side_and_grows_smoothly_beyond():
+    """core = 1.5 on a 40-long axis graded t³ towards the min side (x, y) or the max side
+    (z, g = −3): the cells inside the core are equal, the first cell beyond it is as large
+    as a core cell (the shifted power law), the spacing then grows monotonically, no cell
+    is more than 2.5 times its neighbour, and the cells fill the box; the core gets more
+    cells as n grows. A core of 0 is the plain grading."""
+    counts = []
+    for n in (12, 16, 20):
+        x, hexes, _, quads, _ = graded_box_arrays([40.0, 40.0, 40.0], n, n, [0.0, 0.0, -40.0], [3.0, 3.0, -3.0],
+                                                  core=[1.5, 1.5, 1.5])
+        for axis in range(3):
+            lines = np.unique(x[:, axis])
+            assert len(lines) == n + 1
+            d = lines - lines[0] if axis < 2 else lines[-1] - lines[::-1]  # distance from the clustered side
+            assert d[0] == 0.0 and d[-1] == pytest.approx(40.0, rel=1e-12)
+            h = np.diff(d)
+            j = int(np.flatnonzero(np.isclose(d, 1.5, rtol=1e-12))[0])  # the core's end is a grid line
+            assert np.allclose(h[:j], 1.5 / j, rtol=1e-12)
+            assert h[j] == pytest.approx(h[j - 1], rel=1e-6)
+            assert np.all(np.diff(h[j:]) > 0)
+            assert np.max(np.maximum(h[1:] / h[:-1], h[:-1] / h[1:])) <= 2.5 + 1e-12
+            counts.append(j) if axis == 0 else None
+        tets, _ = kuhn_tetrahedra(hexes, quads)
+        v = signed_volumes(x, tets)
+        assert v.min() > 0.0 and v.sum() == pytest.approx(40.0 ** 3, rel=1e-12)
+    assert counts == sorted(counts) and counts[-1] > counts[0]
+    plain = graded_box_arrays([40.0, 40.0, 40.0], 8, 8, [0.0, 0.0, 0.0], [3.0, 3.0, 3.0])[0]
+    zero = graded_box_arrays([40.0, 40.0, 40.0], 8, 8, [0.0, 0.0, 0.0], [3.0, 3.0, 3.0], core=[0.0, 0.0, 0.0])[0]
+    assert np.array_equal(plain, zero)
+
+
+@pytest.mark.parametrize("keys, message", [
+    ({"core": [1.0, 1.0, 1.0]}, "needs that axis graded"),
+    ({"core": [-1.0, 0.0, 0.0], "grading": [2.0, 1.0, 1.0]}, "x length is negative"),
+    ({"core": [40.0, 0.0, 0.0], "grading": [2.0, 1.0, 1.0]}, "must be shorter than the box's"),
+    ({"core": [1.0, 0.0, 0.0], "grading": [2.0, 1.0, 1.0], "focus": [20.0, 0.0, 0.0]}, "focus inside the box"),
+    ({"builder": "shell_octant", "n": 4, "core": [1.0, 1.0, 1.0]}, "core applies to the box builder"),
+])
+def test_a_bad_core_is_refused_naming_the_key(keys, message):
+    from hypercontact import scene
+
+    data = {"mesh": {"builder": "box", "size": [40.0, 40.0, 10.0], **keys},
+            "material": {"law": "neo_hookean", "parameters": {"mu": 1.0, "K": 2.0}}}
+    with pytest.raises(scene.SceneError, match=rf"mesh\.core.*{message}"):
+        scene.load(data)

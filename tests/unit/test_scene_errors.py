@@ -22,7 +22,7 @@ def message(data, **kwargs):
 @pytest.mark.parametrize("data, expected", [
     ({"material": LAW, "stepz": {}}, "scene key 'stepz': unknown key; did you mean 'steps'?"),
     ({"material": LAW, "mesh": {"zz": 1}}, "scene key 'mesh.zz': unknown key; valid keys: builder, inner_radius, "
-                                           "thickness, size, origin, n, m, grading, focus, cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, ovality, file, perturbation"),
+                                           "thickness, size, origin, n, m, grading, focus, core, cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, ovality, file, perturbation"),
     ({"material": LAW, "mesh": 3}, "scene key 'mesh': expected a table, found 3 (int)"),
     ({"material": LAW, "bc": 3}, "scene key 'bc': expected an array of tables ([[bc]]), found 3 (int)"),
     ({"material": LAW, "mesh": {"n": "16"}}, "scene key 'mesh.n': expected an integer, found '16' (str)"),
@@ -45,7 +45,7 @@ def message(data, **kwargs):
                                  "material": {"law": "neo_hookean", "parameters": {"mu": -1.0, "K": 2.0}}}]},
      "scene key 'body[0].material.parameters.mu': expected a shear modulus > 0, found -1.0 (float)"),
     ({"material": LAW, "mesh": {"a\nb": 1}},
-     "scene key 'mesh.a\\nb': unknown key; valid keys: builder, inner_radius, thickness, size, origin, n, m, grading, focus, "
+     "scene key 'mesh.a\\nb': unknown key; valid keys: builder, inner_radius, thickness, size, origin, n, m, grading, focus, core, "
      "cells, mean_diameter, cord_diameter, cross_section, order, length, layers, angles, ovality, file, perturbation"),
     ({"mesh": {}}, "scene key 'material': missing (required)"),
 ])

@@ -78,6 +78,7 @@ def check_shape(spec):
     make a degenerate or oversized mesh."""
     builder = BUILDERS[spec["builder"]]
     _check_focus(spec)
+    _check_core(spec)
     if builder.surfaces is None:
         return
     if not builder.graded and spec["grading"] != [1.0, 1.0, 1.0]:
@@ -114,6 +115,31 @@ def _check_focus(spec):
         if not lo <= focus[a] <= hi:
             raise Invalid(f"the focus's {'xyz'[a]} = {focus[a]:g} is outside the box ({lo:g} to {hi:g}) on the "
                           f"graded axis {'xyz'[a]}", "focus")
+
+
+def _check_core(spec):
+    """core: the box builder's only; per axis a length 0 <= c < the box's, c > 0 on graded axes only and
+    not where an interior focus clusters cells from both sides."""
+    core = spec.get("core")
+    if core is None:
+        return
+    if spec["builder"] != "box":
+        raise Invalid(f"core applies to the box builder, not {spec['builder']!r}", "core")
+    focus = spec.get("focus")
+    for a, c in enumerate(core):
+        axis, L = "xyz"[a], spec["size"][a]
+        if c < 0.0:
+            raise Invalid(f"the core's {axis} length is negative ({c:g}); expected a length >= 0", "core")
+        if c == 0.0:
+            continue
+        if abs(spec["grading"][a]) == 1.0:
+            raise Invalid(f"a core length along {axis} ({c:g}) needs that axis graded (grading[{a}] = "
+                          f"{spec['grading'][a]:g}): the core is where graded cells stay uniform", "core")
+        if c >= L:
+            raise Invalid(f"the core's {axis} length {c:g} must be shorter than the box's ({L:g})", "core")
+        if focus is not None and spec["origin"][a] < focus[a] < spec["origin"][a] + L:
+            raise Invalid(f"a core along {axis} with the focus inside the box along {axis} is not supported "
+                          f"(the core is measured from the side the cells cluster towards)", "core")
 
 
 def _check_box(spec):

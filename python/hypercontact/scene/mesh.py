@@ -32,6 +32,9 @@ class Mesh(SceneModel):
     #: the box builder: the point graded axes cluster their cells towards (from both sides where it is
     #: inside the box, e.g. a punch's edge); not given: towards the side the sign of grading says
     focus: Optional[vector(COORDINATES)] = None
+    #: the box builder: per axis, a length over which a graded axis keeps uniform cells on the side it
+    #: clusters towards, graded beyond (0: none); e.g. a contact zone resolved evenly in a large block
+    core: Optional[vector(COORDINATES)] = None
     #: the box builder's cells: hexahedra, or each hexahedron split into six tetrahedra (the oring
     #: builder's: an O-grid of hexahedra, or gmsh's Delaunay tetrahedra)
     cells: string(one_of(CELL_KINDS, choices(CELL_KINDS))) = "hexahedra"
@@ -82,6 +85,9 @@ class Body(SceneModel):
     radius: number(POSITIVE, LENGTH) = 1.0
     grading: vector(GRADING) = [1.0, 1.0, 1.0]
     focus: Optional[vector(COORDINATES)] = None
+    #: the box builder: per axis, a length over which a graded axis keeps uniform cells on the side it
+    #: clusters towards, graded beyond (0: none); e.g. a contact zone resolved evenly in a large block
+    core: Optional[vector(COORDINATES)] = None
     #: a physical volume of the [mesh] file: the body is its cells (no builder keys); "": none
     volume: string() = ""
     material: Material
