@@ -4,7 +4,6 @@ Every mesh comes with named boundary surfaces (gmsh physical groups), which
 scenes refer to by name (e.g. ``slave = "zmax"``, ``surface = "xmin"``).
 """
 import difflib
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
