@@ -136,6 +136,12 @@ class Model:
         if self._u_dofs is not None:
             self.u.x.array[:] = self.w.x.array[self._u_dofs]
 
+    def displacement_rows(self):
+        """(owned nodes of V, 3): each owned displacement node's three positions in the
+        process-local unknown vector (its residual's rows)."""
+        dofs = np.arange(3 * dfx.num_owned_nodes(self.V))
+        return (dofs if self._u_dofs is None else np.asarray(self._u_dofs)[dofs]).reshape(-1, 3)
+
     def unknown_dof(self, node, axis):
         """Process-local index in the unknown vector of u_axis at a node of V."""
         dof = 3 * node + axis

@@ -15,6 +15,13 @@
   numbers, λ and Δλ, the verdict (``reason``: the SNES reason, or
   FORCED_FAILURE, INVERTED_ELEMENT, AUGMENTATION_LIMIT) and ``snes_reason``,
   the residual norms of its last solve (one per iterate: iterations + 1),
+  ``solves``: every Newton solve of the attempt (the full-step one and the
+  line-search fallback: ``line_search``, iterations, Krylov iterations,
+  reasons, residual norms) and their total ``attempt_newton_iterations``,
+  ``largest_residuals``: the five nodes with the largest residual force at
+  the last iterate (force, reference ``point``, ``current`` coordinates,
+  the residual vector, the contacts whose slave point sits there and its
+  status),
   the Newton-update norms, the numbers of iterations in which the active
   set and the stick/slip set changed, per iteration the numbers of slave
   points that flipped open ↔ closed and stick ↔ slip and, closed against

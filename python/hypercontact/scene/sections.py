@@ -125,6 +125,7 @@ class Solver(SceneModel):
     rtol: number(POSITIVE, (lambda x: x < 1, "< 1")) = 1e-10
     atol: number(POSITIVE) = 1e-10
     max_it: integer(from_to(1, 1000, "an integer from 1 to 1000")) = 25
+    fallback_max_it: integer(from_to(0, 1000, "an integer from 0 to 1000 (0: max_it)")) = 0
     linesearch: string(one_of(("auto", "basic", "bt", "l2", "cp"),
                               "auto or a PETSc SNES line search: basic, bt, l2 or cp")) = "auto"
     linear: string(one_of(("auto", "direct", "iterative"),

@@ -6,6 +6,7 @@ from mpi4py import MPI
 
 from ..model.inversion import describe_inverted
 from .augmented import augment_until_within
+from .monitor import describe_residual, largest_residuals
 from .newton_solver import NewtonSolver
 from .step_control import LoadStepper
 
@@ -40,6 +41,7 @@ class LoadStepping:
         """One attempt at λ → λ + Δλ: (converged, Newton iterations, last norms, reason)."""
         self.model.set_load_factor(lam + dlam)
         solves_before = len(self.newton.linear_iterations)
+        self.newton.solves.clear()  # the attempt's story lists its own solves only
         self.update_pairing(fresh=True)
         ok, its, norms, reason = self.newton.solve()
         for _ in range(5 if ok else 0):
@@ -70,7 +72,11 @@ class LoadStepping:
                  "linear_iterations": self.linear_its, "residual_norms": list(norms), "update_norms": list(h.update_norms),
                  "active_set_changes": h.active_set_changes(), "stick_slip_changes": h.stick_slip_changes(),
                  "augmentations": self.augmentations}
+        solves = list(self.newton.solves)
+        story["attempt_newton_iterations"] = sum(s["newton_iterations"] for s in solves)
+        story["solves"] = solves  # every Newton solve of the attempt; the norms and flips above are the last's
         story.update(h.flip_story(self.model.u, self.model.comm))
+        story["largest_residuals"] = largest_residuals(self.model, self.newton.snes.getFunction()[0])
         if self.newton.inverted is not None:
             story["inverted_element"] = self.newton.inverted
         return story
@@ -128,5 +134,7 @@ class LoadStepping:
                         f"the master, e.g. over an edge between two facets: {first['contact']!r} at "
                         f"{tuple(round(v, 4) for v in first['point'])})")
         where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
+        if story.get("largest_residuals"):
+            where += "; " + describe_residual(story["largest_residuals"][0])
         self.log(f"   step at λ = {lam:.4f} + {dlam:.3g} failed ({reason}, {its} its{chatter}{where}); "
                  + ("no cut-back left" if stop else f"cut back to Δλ = {0.5 * dlam:.3g}"))

@@ -5,8 +5,50 @@ from it."""
 import numpy as np
 from mpi4py import MPI
 
+from .. import _dolfinx as dfx
+
 #: slave points listed per kind of flip in a failed attempt's story
 TOP_FLIPPERS = 5
+#: nodes listed by the size of their residual force in a failed attempt's story
+TOP_RESIDUALS = 5
+STATUS_NAMES = {0: "open", 1: "stick", 2: "slip"}
+
+
+def largest_residuals(model, F, top=TOP_RESIDUALS):
+    """Where the residual F (the unknown's layout, at the model's current u) is
+    left: the ``top`` displacement nodes of all ranks with the largest residual
+    force |r| (the norm of a node's three rows), each with its reference and
+    current coordinates, r itself, and the contacts whose slave point sits on
+    the node with that point's status (open / stick / slip). Collective."""
+    V, u = model.V, model.u
+    rows = model.displacement_rows()
+    owned = len(rows)
+    r = F.array_r[rows] if owned else np.zeros((0, 3))
+    X = dfx.node_coordinates(V)[:owned]
+    x = X + u.x.array[: 3 * owned].reshape(-1, 3)
+    size = model.comm.allreduce(float(np.ptp(X, axis=0).max()) if owned else 0.0, op=MPI.MAX)
+    magnitude = np.linalg.norm(r, axis=1)
+    mine = np.argsort(-magnitude, kind="stable")[:top]
+    slaves = {i: [] for i in mine}
+    for c in model.contacts:
+        reference, _ = c.point_coordinates(u)  # collective for deformable masters
+        status = c.point_status()
+        for i in mine:
+            near = np.flatnonzero(np.abs(reference - X[i]).max(axis=1) <= 1e-9 * size) if len(reference) else []
+            slaves[i] += [{"contact": c.name, "status": STATUS_NAMES.get(int(status[p]), str(int(status[p])))}
+                          for p in near]
+    local = [{"force": float(magnitude[i]), "point": X[i].tolist(), "current": x[i].tolist(),
+              "residual": r[i].tolist(), "slave_of": slaves[i]} for i in mine]
+    every = [e for part in model.comm.allgather(local) for e in part]
+    return sorted(every, key=lambda e: (-e["force"], e["point"]))[:top]
+
+
+def describe_residual(entry):
+    """One line for the log: where the largest residual force of a failed attempt is."""
+    point = ", ".join(f"{v:.4g}" for v in entry["point"])
+    now = ", ".join(f"{v:.4g}" for v in entry["current"])
+    slaves = "".join(f", slave point of {s['contact']!r} ({s['status']})" for s in entry["slave_of"])
+    return f"largest residual force {entry['force']:.3g} at the node ({point}), now at ({now}){slaves}"
 
 
 class IterationHistory:

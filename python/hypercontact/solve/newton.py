@@ -228,12 +228,16 @@ def make_snes(problem, comm, solver, prefix="hc_", deformable=False, symmetric=F
 def set_line_search(snes, kind):
     """Make ``kind`` the SNES's line search (through its options: petsc4py
     3.18 has no line-search object); returns the one it had."""
-    opts = PETSc.Options()
-    key = (snes.getOptionsPrefix() or "") + "snes_linesearch_type"
-    previous = opts.getString(key, "bt")
-    opts[key] = kind
+    previous = line_search_of(snes)
+    PETSc.Options()[(snes.getOptionsPrefix() or "") + "snes_linesearch_type"] = kind
     snes.setFromOptions()
     return previous
+
+
+def line_search_of(snes):
+    """The line search the SNES solves with (its options value, see set_line_search)."""
+    key = (snes.getOptionsPrefix() or "") + "snes_linesearch_type"
+    return PETSc.Options().getString(key, "bt")
 
 
 def converged_reason_name(reason):

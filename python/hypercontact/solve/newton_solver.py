@@ -9,7 +9,7 @@ from mpi4py import MPI
 from .. import _dolfinx as dfx
 from ..model.inversion import INVERTED_ELEMENT
 from .monitor import IterationHistory
-from .newton import converged_reason_name, make_snes, residual_norms_of, set_line_search
+from .newton import converged_reason_name, line_search_of, make_snes, residual_norms_of, set_line_search
 
 class NewtonSolver:
     """SNES (newtonls) with the scene's solver settings. Line search "auto":
@@ -27,10 +27,17 @@ class NewtonSolver:
         self.fallback = None
         if solver["linesearch"] == "auto" and model.contacts:
             self.fallback = "basic" if deformable else "bt"
+        # the fallback's own iteration limit: a fallback that crawls (backtracking to tiny steps after a
+        # full step overshot into inverted elements) costs up to max_it iterations before the cut-back
+        self.max_it = self.snes.getTolerances()[3]  # solver.max_it, or a snes_max_it in solver.petsc
+        self.fallback_max_it = solver["fallback_max_it"] or self.max_it
         self.history = IterationHistory(model.contacts)
-        self.snes.setConvergenceHistory(length=solver["max_it"] + 1, reset=True)
+        self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
         self.linear_iterations = []  # Krylov iterations of each Newton solve
+        # what each Newton solve did (line search, iterations, reason, residual norms): a failed
+        # attempt's story lists its solves, the primary's as well as the fallback's
+        self.solves = []
         # what the iterative solver's time goes to (read by Run.split): the preconditioner set-up is the
         # time from the end of the tangent's assembly to the Krylov solve's first monitor call (PETSc
         # sets the preconditioner up inside KSPSolve, before iterating), the Krylov time the rest of it.
@@ -73,10 +80,12 @@ class NewtonSolver:
         w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
         self.model.sync_displacement()
         primary = set_line_search(self.snes, self.fallback)
+        self.snes.setTolerances(max_it=self.fallback_max_it)
         try:
             ok, more, norms, reason = self._newton()
         finally:
             set_line_search(self.snes, primary)
+            self.snes.setTolerances(max_it=self.max_it)
         return ok, its + more, norms, reason
 
     def _newton(self):
@@ -91,6 +100,9 @@ class NewtonSolver:
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
         self.last_snes_reason = name = converged_reason_name(reason)
+        record = {"line_search": line_search_of(self.snes), "newton_iterations": self.snes.getIterationNumber(),
+                  "linear_iterations": self.linear_iterations[-1], "snes_reason": name, "residual_norms": norms}
+        self.solves.append(record)
         # every rank must take the same branch: a NaN on one rank fails the step on all
         finite = model.comm.allreduce(int(np.all(np.isfinite(x.array))), op=MPI.MIN)
         converged = reason > 0 and bool(finite)
@@ -102,6 +114,7 @@ class NewtonSolver:
             self.inverted = model.inversion_check()
         if converged and self.inverted is not None:
             converged, name = False, INVERTED_ELEMENT
+        record["reason"] = name
         return converged, self.snes.getIterationNumber(), norms, name
 
     def iterations(self):
