@@ -121,3 +121,6 @@ def test_a_failed_attempt_lists_each_solve_and_where_its_residual_is(out_dir, fa
     assert np.sqrt(np.sum(np.square(forces))) <= norm * (1 + 1e-12)
     assert forces[0] >= norm / np.sqrt(nodes)
     assert f"{forces[0]:.3g}" in line
+    # the frictionless punch's points are open or closed (they slide: no stick, no slip)
+    statuses = {s["status"] for e in story["largest_residuals"] for s in e["slave_of"]}
+    assert statuses and statuses <= {"open", "closed"}

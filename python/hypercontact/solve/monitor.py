@@ -35,12 +35,18 @@ def largest_residuals(model, F, top=TOP_RESIDUALS):
         status = c.point_status()
         for i in mine:
             near = np.flatnonzero(np.abs(reference - X[i]).max(axis=1) <= 1e-9 * size) if len(reference) else []
-            slaves[i] += [{"contact": c.name, "status": STATUS_NAMES.get(int(status[p]), str(int(status[p])))}
-                          for p in near]
+            slaves[i] += [{"contact": c.name, "status": status_name(c, status[p])} for p in near]
     local = [{"force": float(magnitude[i]), "point": X[i].tolist(), "current": x[i].tolist(),
               "residual": r[i].tolist(), "slave_of": slaves[i]} for i in mine]
     every = [e for part in model.comm.allgather(local) for e in part]
     return sorted(every, key=lambda e: (-e["force"], e["point"]))[:top]
+
+
+def status_name(contact, status):
+    """open / stick / slip; a frictionless contact's closed point (status 2, it slides) is "closed"."""
+    if int(status) == 2 and not contact.frictional:
+        return "closed"
+    return STATUS_NAMES.get(int(status), str(int(status)))
 
 
 def describe_residual(entry):
