@@ -348,7 +348,12 @@ def test_tangent_of_the_bordered_system_with_sliding_contact(runs, tmp_path, mon
     assert checked
     orders = []
     for s in rec.writer.steps:
-        r = [v for v in s["residual_norms"] if v > 1e-7]  # above the round-off floor
+        # above the round-off floor, which scales with the forces: 1e-13 of the step's first residual
+        # (about 40 times the converged iterates here). A fixed floor of 1e-7 cut iterates five decades
+        # above it and left the order to pre-asymptotic triples (one of them -200), whose median moved
+        # across 1.6 with the OpenBLAS kernel.
+        norms = s["residual_norms"]
+        r = [v for v in norms if v > 1e-13 * norms[0]]
         if s["wall_closed_nodes"] > 0 and len(r) >= 3:
             orders.append(np.log(r[-1] / r[-2]) / np.log(r[-2] / r[-3]))
     assert len(orders) >= 3 and np.median(orders) > 1.6
