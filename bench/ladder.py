@@ -130,6 +130,12 @@ def report(out):
             "Speed-up: the serial run's wall time over this run's, the whole path; a serial and a parallel "
             "run compare only when they ran one after the other in the same file.", ""] + lines
     text += (["", "Partial runs (killed before the end of the path):"] + notes) if notes else []
+    special = [f"- {r['unknowns']:,} unknowns, μ1 = {r['mu']:g}, {r['ranks']} rank(s): "
+               + "; ".join(([f"{r['failed_attempts']} failed attempt(s) cut back, their Newton and Krylov "
+                             "iterations counted in the rates"] if r.get("failed_attempts") else [])
+                           + ([f"run with {', '.join(r['extra'])}"] if r.get("extra") else []))
+               for r in rows if "partial" not in r and (r.get("failed_attempts") or r.get("extra"))]
+    text += (["", "Completed runs with failed attempts or non-default settings:"] + special) if special else []
     (out / "ladder.md").write_text("\n".join(text) + "\n")
     print("\n".join(text))
     import matplotlib
