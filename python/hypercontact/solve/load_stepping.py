@@ -40,8 +40,7 @@ class LoadStepping:
     def attempt(self, step, lam, dlam, attempt):
         """One attempt at λ → λ + Δλ: (converged, Newton iterations, last norms, reason)."""
         self.model.set_load_factor(lam + dlam)
-        solves_before = len(self.newton.linear_iterations)
-        self.newton.solves.clear()  # the attempt's story lists its own solves only
+        self.newton.solves.clear()  # the attempt's own solves: its story and its Krylov count
         self.update_pairing(fresh=True)
         ok, its, norms, reason = self.newton.solve()
         for _ in range(5 if ok else 0):
@@ -61,7 +60,7 @@ class LoadStepping:
         forced = self.fail_attempt is not None and bool(self.fail_attempt(step, lam, dlam, attempt))
         if self.model.comm.allreduce(forced, op=MPI.LOR) and ok:
             ok, reason = False, FORCED_FAILURE
-        self.linear_its = sum(self.newton.linear_iterations[solves_before:])
+        self.linear_its = sum(s["linear_iterations"] for s in self.newton.solves)
         return ok, its, norms, reason
 
     def failure_story(self, step, lam, dlam, attempt, reason, norms):
@@ -72,9 +71,8 @@ class LoadStepping:
                  "linear_iterations": self.linear_its, "residual_norms": list(norms), "update_norms": list(h.update_norms),
                  "active_set_changes": h.active_set_changes(), "stick_slip_changes": h.stick_slip_changes(),
                  "augmentations": self.augmentations}
-        solves = list(self.newton.solves)
-        story["attempt_newton_iterations"] = sum(s["newton_iterations"] for s in solves)
-        story["solves"] = solves  # every Newton solve of the attempt; the norms and flips above are the last's
+        story["solves"] = list(self.newton.solves)  # every Newton solve of the attempt; the norms and flips above are the last's
+        story["attempt_newton_iterations"] = sum(s["newton_iterations"] for s in story["solves"])
         story.update(h.flip_story(self.model.u, self.model.comm))
         story["largest_residuals"] = largest_residuals(self.model, self.newton.snes.getFunction()[0])
         if self.newton.inverted is not None:
