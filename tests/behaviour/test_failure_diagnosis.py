@@ -124,3 +124,4 @@ def test_a_failed_attempt_lists_each_solve_and_where_its_residual_is(out_dir, fa
     # the frictionless punch's points are open or closed (they slide: no stick, no slip)
     statuses = {s["status"] for e in story["largest_residuals"] for s in e["slave_of"]}
     assert statuses and statuses <= {"open", "closed"}
+

@@ -19,11 +19,13 @@ from reference.block import PARAMS, block_scene
 EPS = 1e4
 
 
-def squeeze(out, d, max_it=25, law=None, linesearch="auto"):
+def squeeze(out, d, max_it=25, law=None, linesearch="auto", fallback_min_decrease=None):
     """The block pressed by d in one step (at most 4 cut-backs); ``law``: a
     ψ(F, **block parameters) instead of the scene's Mooney–Rivlin."""
     sc = block_scene(out)
     sc["solver"]["max_it"] = max_it
+    if fallback_min_decrease is not None:
+        sc["solver"]["fallback_min_decrease"] = fallback_min_decrease
     sc["solver"]["linesearch"] = linesearch
     sc["steps"] = {"initial": 1.0, "max": 1.0, "max_cutbacks": 4}
     sc["output"]["xdmf"] = True
@@ -66,18 +68,55 @@ def test_inverting_step_is_cut_back_and_recovers(out_dir):
 def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir):
     """The same squeeze with linesearch = "auto": the full-step solve goes
     NaN at its first iterate, the backtracking solve is tried next from the
-    same start (it runs out of iterations here), and only then is the step
-    cut back; the run ends on the closed-form state."""
+    same start (it crawls and is stopped as stalled here), and only then is
+    the step cut back; the run ends on the closed-form state."""
     sim, messages = squeeze(out_dir, 0.7, max_it=25)
     writer = sim.run()
     failed = [m for m in messages if "failed" in m]
     assert len(failed) == 1
     its = int(re.search(r", (\d+) its", failed[0]).group(1))
-    assert its > 25  # both solves ran: 1 iterate of full steps, then 25 of bt
+    story = json.loads((out_dir / "summary.json").read_text())["failed_attempts"][0]
+    solves = story["solves"]
+    # both solves ran: full steps to the NaN at the first iterate, then backtracking from the start
+    assert [(s["line_search"], s["reason"]) for s in solves] == [("basic", "DIVERGED_FNORM_NAN"), ("bt", "STALLED")]
+    assert solves[0]["newton_iterations"] == 1 and its == sum(s["newton_iterations"] for s in solves)
+    assert solves[0]["residual_norms"][0] == solves[1]["residual_norms"][0]  # the same start
     assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
     _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
     assert sim.contacts[0].force(sim.u)[2] == pytest.approx(P3, rel=1e-6)
 
+
+
+def test_a_crawling_fallback_is_stopped_and_ends_where_the_crawl_does(out_dir):
+    """The same squeeze with and without the fallback's stall stop: without
+    it the backtracking solve runs its 25 iterations and fails anyway
+    (|R| 2.6e3, 2.1e3, 1.04e3, 1.02e3, 1.02e3, 957, … in bursts); with it
+    the same iterates stop after two slow ones. Both runs then cut back and
+    end on the closed-form state, the stopped one in fewer iterations."""
+    runs = {}
+    for min_decrease in (0.05, 0):
+        folder = out_dir / f"stall{min_decrease}"
+        folder.mkdir()
+        sim, messages = squeeze(folder, 0.7, max_it=25, fallback_min_decrease=min_decrease)
+        sim.run()
+        summary = json.loads((folder / "summary.json").read_text())
+        assert len(summary["failed_attempts"]) == 1
+        runs[min_decrease] = (summary, sim.contacts[0].force(sim.u)[2])
+    (stopped, force), (crawled, force_crawled) = runs[0.05], runs[0]
+    fallback = stopped["failed_attempts"][0]["solves"][1]
+    crawl = crawled["failed_attempts"][0]["solves"][1]
+    assert fallback["line_search"] == crawl["line_search"] == "bt"
+    assert fallback["reason"] == stopped["failed_attempts"][0]["reason"] == "STALLED"
+    assert crawl["reason"] == "DIVERGED_MAX_IT" and crawl["newton_iterations"] == 25
+    norms = fallback["residual_norms"]
+    assert crawl["residual_norms"][:len(norms)] == norms  # the same iterates, stopped early
+    assert all(b > 0.95 * a for a, b in zip(norms[-3:], norms[-2:]))  # the last two gained < 5 % each
+    assert not all(b > 0.95 * a for a, b in zip(norms[-4:-1], norms[-3:-1]))  # not the two before
+    assert stopped["newton_iterations"] == crawled["newton_iterations"]  # the same cut-back steps
+    _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
+    assert force == pytest.approx(P3, rel=1e-6) and force == pytest.approx(force_crawled, rel=1e-10)
+    iterations = [s["attempt_newton_iterations"] for s in (stopped["failed_attempts"][0], crawled["failed_attempts"][0])]
+    assert iterations[0] <= iterations[1] - 15
 
 @pytest.mark.mpi
 def test_impossible_squeeze_stops_with_a_diagnosis(out_dir):

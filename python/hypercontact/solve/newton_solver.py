@@ -9,7 +9,8 @@ from mpi4py import MPI
 from .. import _dolfinx as dfx
 from ..model.inversion import INVERTED_ELEMENT
 from .monitor import IterationHistory
-from .newton import converged_reason_name, line_search_of, make_snes, residual_norms_of, set_line_search
+from .newton import (STALLED, StallTest, converged_reason_name, line_search_of, make_snes, residual_norms_of,
+                     set_line_search)
 
 class NewtonSolver:
     """SNES (newtonls) with the scene's solver settings. Line search "auto":
@@ -31,6 +32,11 @@ class NewtonSolver:
         # full step overshot into inverted elements) costs up to max_it iterations before the cut-back
         self.max_it = self.snes.getTolerances()[3]  # solver.max_it, or a snes_max_it in solver.petsc
         self.fallback_max_it = solver["fallback_max_it"] or self.max_it
+        # ... and its stall stop: two iterations in a row that each lower |R| by less than this fraction
+        # end it (then the step is cut back), measured in docs/performance.md §2
+        self.stall_test = StallTest(self.snes, solver["fallback_min_decrease"]) \
+            if solver["fallback_min_decrease"] > 0 else None
+        self._stall_active = False
         self.history = IterationHistory(model.contacts)
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
@@ -81,11 +87,17 @@ class NewtonSolver:
         self.model.sync_displacement()
         primary = set_line_search(self.snes, self.fallback)
         self.snes.setTolerances(max_it=self.fallback_max_it)
+        if self.stall_test is not None:
+            self.snes.setConvergenceTest(self.stall_test)
+            self._stall_active = True
         try:
             ok, more, norms, reason = self._newton()
         finally:
             set_line_search(self.snes, primary)
             self.snes.setTolerances(max_it=self.max_it)
+            if self._stall_active:
+                self.snes.setConvergenceTest("default")
+                self._stall_active = False
         return ok, its + more, norms, reason
 
     def _newton(self):
@@ -99,7 +111,10 @@ class NewtonSolver:
         self.linear_iterations.append(self.snes.getLinearSolveIterations())
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
-        self.last_snes_reason = name = converged_reason_name(reason)
+        name = converged_reason_name(reason)
+        if self._stall_active and self.stall_test.stalled:
+            name = STALLED  # (SNES was told DIVERGED_MAX_IT)
+        self.last_snes_reason = name
         record = {"line_search": line_search_of(self.snes), "newton_iterations": self.snes.getIterationNumber(),
                   "linear_iterations": self.linear_iterations[-1], "snes_reason": name, "residual_norms": norms}
         self.solves.append(record)

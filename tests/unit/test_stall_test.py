@@ -1,0 +1,131 @@
+"""The line-search fallback's stall stop (solve.newton.StallTest).
+
+- On synthetic residual histories: two iterations in a row that each lower
+  |R| by less than the fraction stop the solve; one slow iteration between
+  fast ones does not; NaN, the absolute and the relative tolerance give
+  PETSc's own reasons.
+- On a real nonlinear solve whose iterations never stall, the test is PETSc's
+  default: the same residual history and reason as SNESConvergedDefault,
+  iterate for iterate (an independent nonlinear system, not a scene).
+"""
+import numpy as np
+import pytest
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from hypercontact.solve.newton import StallTest
+
+R = PETSc.SNES.ConvergedReason
+
+
+def snes_with(rtol=1e-10, atol=1e-10):
+    snes = PETSc.SNES().create(MPI.COMM_SELF)
+    snes.setTolerances(rtol=rtol, atol=atol, stol=0.0, max_it=50)
+    return snes
+
+
+def run(test, norms):
+    reasons = [test(test_snes, k, (1.0, 1.0, f)) for k, f in enumerate(norms)]
+    return reasons
+
+
+test_snes = snes_with()
+
+
+@pytest.mark.parametrize("norms, stop_at", [
+    ([4.58e3, 35.0, 34.9, 34.9], 3),            # the 32×32×8 punch in one step: a crawl after one good iteration
+    ([360.0, 2.50, 2.50, 2.50, 2.49], 3),        # the 706k punch's crawl
+    ([100.0, 99.0, 98.0], 2),                    # never a good iteration
+    ([100.0, 96.0, 50.0, 49.0, 48.5], 4),        # slow, fast, slow, slow
+    ([100.0, 101.0, 100.5], 2),                  # an increase counts as no decrease
+])
+def test_two_slow_iterations_in_a_row_stop_the_solve(norms, stop_at):
+    test = StallTest(test_snes, 0.05)
+    reasons = run(test, norms)
+    assert all(r == R.CONVERGED_ITERATING for r in reasons[:stop_at])
+    assert reasons[stop_at] == R.DIVERGED_MAX_IT and test.stalled
+
+
+@pytest.mark.parametrize("norms", [
+    [73.7, 1.0, 0.666, 0.325, 0.125, 0.0447],      # the 706k punch's fallbacks that were still converging
+    [29.4, 0.89, 0.78, 0.572, 0.543, 0.107],
+    [41.4, 1.17, 0.833, 0.719, 0.228, 0.122],
+    [100.0, 96.0, 50.0, 48.0, 20.0, 19.5, 5.0],    # slow iterations, never two in a row
+])
+def test_one_slow_iteration_between_fast_ones_goes_on(norms):
+    test = StallTest(test_snes, 0.05)
+    assert all(r == R.CONVERGED_ITERATING for r in run(test, norms)) and not test.stalled
+
+
+def test_the_fraction_sets_what_is_slow():
+    norms = [100.0, 90.0, 81.0, 72.9]  # 10 % per iteration
+    assert run(StallTest(test_snes, 0.05), norms)[-1] == R.CONVERGED_ITERATING
+    assert run(StallTest(test_snes, 0.2), norms)[2] == R.DIVERGED_MAX_IT
+
+
+def test_petsc_reasons_come_first():
+    test = StallTest(snes_with(rtol=1e-3, atol=1e-8), 0.05)
+    assert run(test, [1.0, float("nan")])[-1] == R.DIVERGED_FNORM_NAN
+    assert run(test, [1.0, 0.9999, 5e-9])[-1] == R.CONVERGED_FNORM_ABS and not test.stalled
+    assert run(test, [1.0, 0.9999, 9e-4])[-1] == R.CONVERGED_FNORM_RELATIVE and not test.stalled
+    assert run(test, [1.0, 2e4])[-1] == R.DIVERGED_DTOL  # PETSc's divergence tolerance, 1e4 by default
+    assert run(test, [1e-9])[0] == R.CONVERGED_FNORM_ABS  # converged at the start
+
+
+def test_history_restarts_with_each_solve():
+    test = StallTest(test_snes, 0.05)
+    run(test, [100.0, 99.0, 98.0])
+    assert test.stalled
+    assert run(test, [100.0, 10.0])[-1] == R.CONVERGED_ITERATING and not test.stalled
+
+
+def solve_cubic(convergence_test, line_search):
+    """x_i³ + x_i − b_i = 0 with a weak coupling, n = 20, from x = 0: a nonlinear solve whose
+    iterations fall fast (no stall), so the stall test must act exactly as PETSc's default."""
+    n = 20
+    b = np.linspace(1.0, 30.0, n)
+
+    def residual(snes, x, f):
+        xa = x.getArray(readonly=True)
+        fa = xa ** 3 + xa - b
+        fa[1:] += 0.1 * xa[:-1]
+        f.setArray(fa)
+
+    def jacobian(snes, x, J, P):
+        xa = x.getArray(readonly=True)
+        P.zeroEntries()
+        for i in range(n):
+            P.setValue(i, i, 3 * xa[i] ** 2 + 1)
+            if i:
+                P.setValue(i, i - 1, 0.1)
+        P.assemble()
+
+    snes = PETSc.SNES().create(MPI.COMM_SELF)
+    snes.setOptionsPrefix("stalltest_")
+    PETSc.Options()["stalltest_snes_linesearch_type"] = line_search
+    J = PETSc.Mat().createAIJ([n, n], nnz=2, comm=MPI.COMM_SELF)
+    f = PETSc.Vec().createSeq(n)
+    snes.setFunction(residual, f)
+    snes.setJacobian(jacobian, J)
+    snes.getKSP().setType("preonly")
+    snes.getKSP().getPC().setType("lu")
+    snes.setTolerances(rtol=1e-12, atol=1e-14, stol=0.0, max_it=50)
+    snes.setFromOptions()
+    snes.setConvergenceHistory(length=51, reset=True)
+    if convergence_test is not None:
+        snes.setConvergenceTest(convergence_test(snes))
+    x = f.duplicate()
+    x.set(0.0)
+    snes.solve(None, x)
+    norms = np.asarray(snes.getConvergenceHistory()[0])
+    return snes.getConvergedReason(), norms, x.getArray().copy()
+
+
+@pytest.mark.parametrize("line_search", ["basic", "bt"])
+def test_without_a_stall_it_is_petsc_default(line_search):
+    reason, norms, x = solve_cubic(None, line_search)
+    reason_s, norms_s, x_s = solve_cubic(lambda snes: StallTest(snes, 0.05), line_search)
+    assert reason > 0 and len(norms) > 4  # a real nonlinear solve, converged in several iterations
+    assert reason_s == reason
+    assert np.array_equal(norms_s, norms)
+    assert np.array_equal(x_s, x)
