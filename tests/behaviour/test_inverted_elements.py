@@ -19,13 +19,13 @@ from reference.block import PARAMS, block_scene
 EPS = 1e4
 
 
-def squeeze(out, d, max_it=25, law=None, linesearch="auto", fallback_min_decrease=None):
+def squeeze(out, d, max_it=25, law=None, linesearch="auto", stall_decrease=None):
     """The block pressed by d in one step (at most 4 cut-backs); ``law``: a
     ψ(F, **block parameters) instead of the scene's Mooney–Rivlin."""
     sc = block_scene(out)
     sc["solver"]["max_it"] = max_it
-    if fallback_min_decrease is not None:
-        sc["solver"]["fallback_min_decrease"] = fallback_min_decrease
+    if stall_decrease is not None:
+        sc["solver"]["stall_decrease"] = stall_decrease
     sc["solver"]["linesearch"] = linesearch
     sc["steps"] = {"initial": 1.0, "max": 1.0, "max_cutbacks": 4}
     sc["output"]["xdmf"] = True
@@ -97,7 +97,7 @@ def test_a_crawling_fallback_is_stopped_and_ends_where_the_crawl_does(out_dir):
     for min_decrease in (0.05, 0):
         folder = out_dir / f"stall{min_decrease}"
         folder.mkdir()
-        sim, messages = squeeze(folder, 0.7, max_it=25, fallback_min_decrease=min_decrease)
+        sim, messages = squeeze(folder, 0.7, max_it=25, stall_decrease=min_decrease)
         sim.run()
         summary = json.loads((folder / "summary.json").read_text())
         assert len(summary["failed_attempts"]) == 1

@@ -168,12 +168,23 @@ def test_full_newton_chatters_and_the_line_search_converges_to_equilibrium(tmp_p
     force on the ball equals the reactions of its flat top and of the
     block's bottom computed from the volume forms alone, and equals the
     force of the same push reached in ten small steps."""
-    plain, messages, ok = chatter_run(tmp_path / "plain", ['solver.linesearch="basic"', "contact.0.smoothing=0"])
-    assert not ok
-    its = len(plain.newton.history.active_sets) - 1
-    assert its == plain.scene["solver"]["max_it"]
-    assert plain.newton.history.active_set_changes() >= 0.8 * its  # the active set changed in almost every iteration
-    assert any("contact active set changed" in m and "chattering" in m for m in messages)
+    # without the cycle stop full steps run to max_it; with it (the default) they stop as stalled once
+    # |R| revisits its values (a period-3 cycle here) without a new smallest |R| in 4 iterations
+    for stall_its in (0, 4):
+        plain, messages, ok = chatter_run(tmp_path / f"plain{stall_its}", [
+            'solver.linesearch="basic"', "contact.0.smoothing=0", f"solver.stall_its={stall_its}"])
+        assert not ok
+        its = len(plain.newton.history.active_sets) - 1
+        solve = plain.newton.solves[-1]
+        if stall_its == 0:
+            assert its == plain.scene["solver"]["max_it"] and solve["reason"] == "DIVERGED_MAX_IT"
+        else:
+            norms = solve["residual_norms"]
+            assert solve["reason"] == "STALLED" and its < plain.scene["solver"]["max_it"]
+            assert min(abs(norms[-1] / norms[-1 - p] - 1) for p in (2, 3)) <= 0.05  # a revisit
+            assert min(norms[-4:]) > 0.95 * min(norms[:-4])  # no new smallest |R| in the last four
+        assert plain.newton.history.active_set_changes() >= 0.8 * its  # the active set changed in almost every iteration
+        assert any("contact active set changed" in m and "chattering" in m for m in messages)
 
     damped, messages, ok = chatter_run(tmp_path / "damped")
     assert ok and damped.scene["solver"]["linesearch"] == "auto"  # bt with a deformable master

@@ -129,3 +129,35 @@ def test_without_a_stall_it_is_petsc_default(line_search):
     assert reason_s == reason
     assert np.array_equal(norms_s, norms)
     assert np.array_equal(x_s, x)
+
+
+@pytest.mark.parametrize("norms, stop_at", [
+    # the 706k frictional punch's full-step solve at λ = 0.8 + 0.1: down to 0.003, then 2-cycling
+    ([162.657, 0.633, 0.248, 0.038, 0.003, 0.018, 0.004, 0.019, 0.004, 0.019, 0.004], 8),
+    ([10.0, 1.0, 3.0, 2.0, 1.0, 3.0, 2.0, 1.0, 3.0], 5),  # a period-3 cycle: 4 without a new best at 5
+])
+def test_a_cycle_is_stopped_after_four_iterations_without_a_new_smallest_residual(norms, stop_at):
+    test = StallTest(test_snes, 0.05, window=0, cycle_window=4)
+    reasons = run(test, norms)
+    assert all(r == R.CONVERGED_ITERATING for r in reasons[:stop_at])
+    assert reasons[stop_at] == R.DIVERGED_MAX_IT and test.stalled
+    # without the cycle stop (the crawl stop alone) it runs on: no two slow iterations in a row
+    assert all(r == R.CONVERGED_ITERATING for r in run(StallTest(test_snes, 0.05), norms))
+
+
+@pytest.mark.parametrize("norms", [
+    [1.0, 1.5, 1.2, 0.1, 1e-3],                     # a rise while the active set settles, then Newton
+    [1.0, 0.99, 1.3, 0.98, 0.5, 1e-2],              # three iterations without a new smallest |R|
+    [360.0, 2.50, 0.4, 0.38, 0.37, 0.2, 1e-3],      # slow iterations with no crawl stop (window 0)
+    [79.7, 3.76e4, 1.11e4, 3.28e3, 957.0, 267.0, 65.2, 10.5, 0.557],  # an overshoot, then a steady recovery
+])
+def test_full_steps_that_settle_within_four_iterations_go_on(norms):
+    test = StallTest(test_snes, 0.05, window=0, cycle_window=4)
+    assert all(r == R.CONVERGED_ITERATING for r in run(test, norms)) and not test.stalled
+
+
+@pytest.mark.parametrize("line_search", ["basic", "bt"])
+def test_without_a_stall_both_stops_are_petsc_default(line_search):
+    reason, norms, x = solve_cubic(None, line_search)
+    reason_s, norms_s, x_s = solve_cubic(lambda snes: StallTest(snes, 0.05, window=2, cycle_window=4), line_search)
+    assert reason_s == reason and np.array_equal(norms_s, norms) and np.array_equal(x_s, x)

@@ -82,9 +82,10 @@ def test_a_point_over_a_kinked_master_edge_is_named_in_the_failure_story(tmp_pat
     elements and ε_N = 10⁴: the slave nodes on x = 0.5 or y = 0.5 lie exactly over an
     inner edge of the master, which the non-uniform contact pressure kinks; such a node
     switches between the two facets every Newton iteration and the step cannot
-    converge (a limitation of node-to-surface contact on a C0 master). The run stops
-    with that diagnosis: the failed attempt's story counts the facet switches and
-    names the points, all on those lines of the interface."""
+    converge (a limitation of node-to-surface contact on a C0 master): the full-step
+    fallback 2-cycles and is stopped as stalled. The run stops with that diagnosis:
+    the failed attempt's story counts the facet switches in every iteration of that
+    solve and names the points, all on those lines of the interface."""
     import json
 
     from hypercontact.simulation import StepFailure
@@ -98,9 +99,11 @@ def test_a_point_over_a_kinked_master_edge_is_named_in_the_failure_story(tmp_pat
         sim.run()
     [story] = json.loads((tmp_path / "summary.json").read_text())["failed_attempts"]
     switches = story["master_facet_flips_per_iteration"]
-    assert len(switches) == story["newton_iterations"] and sum(n > 0 for n in switches) >= 10
+    warn = sim.scene["steps"]["chatter_warning"]
+    assert story["reason"] == "STALLED" and story["solves"][-1]["line_search"] == "basic"
+    assert len(switches) == story["newton_iterations"] >= warn and all(n > 0 for n in switches)
     named = story["most_master_facet_flips"]
-    assert len(named) == 5 and named[0]["flips"] >= 10
+    assert len(named) == 5 and named[0]["flips"] >= len(switches) - 1
     for f in named:
         x, y, z = f["point"]
         assert f["contact"] == "interface" and abs(z - 0.5) < 1e-9

@@ -265,17 +265,24 @@ STALLED = "STALLED"
 class StallTest:
     """A SNES convergence test: PETSc's default (SNESConvergedDefault, PETSc
     3.18: relative and absolute residual tolerances, NaN, function-evaluation
-    count, divergence tolerance; the iteration limit is SNES's own) and one
-    more stop: the solve is ended as stalled when ``window`` consecutive
-    iterations each lowered |R| by less than the fraction ``min_decrease``.
+    count, divergence tolerance; the iteration limit is SNES's own) and two
+    more stops, both reported as stalled:
 
-    Used on the line-search fallback: a backtracking line search that follows
-    a full-step solve into the inverted elements at a rigid corner crawls
-    (|R| 2.50, 2.50, 2.50, 2.49 … on the 706k punch: 0.03–0.6 % per
-    iteration of 17 s) until max_it, when a cut-back would have converged."""
+    - a crawl (``window`` > 0): ``window`` consecutive iterations each lowered
+      |R| by less than the fraction ``min_decrease``. A backtracking line
+      search that follows a full step into the inverted elements at a rigid
+      corner crawls so (|R| 2.50, 2.50, 2.50, 2.49 … on the 706k punch:
+      0.03–0.6 % per iteration of 17 s) until max_it, when a cut-back would
+      have converged. Only for the line-search fallback: a full-step solve
+      may be slow for an iteration or two while the active set settles;
+    - a cycle (``cycle_window`` > 0): ``cycle_window`` iterations without a
+      new smallest |R| (by the fraction ``min_decrease``), and |R| back
+      within that fraction of its value two or three iterations before. The
+      706k frictional punch's full steps fell to 0.003 and then alternated
+      0.019, 0.004, 0.019, … for 20 iterations to max_it."""
 
-    def __init__(self, snes, min_decrease, window=2):
-        self.min_decrease, self.window = float(min_decrease), int(window)
+    def __init__(self, snes, min_decrease, window=2, cycle_window=0):
+        self.min_decrease, self.window, self.cycle_window = float(min_decrease), int(window), int(cycle_window)
         self.rtol, self.atol = snes.getTolerances()[:2]
         self.max_funcs = snes.getMaxFunctionEvaluations()
         self.divtol = PETSc.Options().getReal((snes.getOptionsPrefix() or "") + "snes_divergence_tolerance", 1e4)
@@ -283,6 +290,7 @@ class StallTest:
 
     def reset(self):
         self.norms, self.stalled, self.ttol, self.rnorm0 = [], False, 0.0, 0.0
+        self.best, self.since_best = np.inf, 0
 
     def __call__(self, snes, it, norms):
         xnorm, ynorm, fnorm = norms  # (how petsc4py passes them)
@@ -291,6 +299,10 @@ class StallTest:
             self.reset()
             self.ttol, self.rnorm0 = fnorm * self.rtol, fnorm
         self.norms.append(fnorm)
+        if fnorm < (1.0 - self.min_decrease) * self.best or it == 0:
+            self.best, self.since_best = fnorm, 0
+        else:
+            self.since_best += 1
         if not np.isfinite(fnorm):
             return R.DIVERGED_FNORM_NAN
         if fnorm < self.atol:
@@ -304,8 +316,14 @@ class StallTest:
         if self.divtol > 0 and fnorm > self.divtol * self.rnorm0:
             return R.DIVERGED_DTOL
         recent = self.norms[-self.window - 1:]
-        if len(recent) == self.window + 1 and all(b > (1.0 - self.min_decrease) * a
-                                                   for a, b in zip(recent, recent[1:])):
+        crawl = self.window > 0 and len(recent) == self.window + 1 and all(
+            b > (1.0 - self.min_decrease) * a for a, b in zip(recent, recent[1:]))
+        # a cycle revisits: |R| within the fraction of its value two or three iterations back (a period-2
+        # or -3 cycle; a steady recovery from an overshoot, e.g. 80, 4e4, 1.1e4, 3.3e3, 957, does not)
+        cycle = 0 < self.cycle_window <= self.since_best and any(
+            abs(fnorm - self.norms[-1 - p]) <= self.min_decrease * self.norms[-1 - p]
+            for p in (2, 3) if len(self.norms) > p)
+        if crawl or cycle:
             self.stalled = True
             return R.DIVERGED_MAX_IT
         return R.CONVERGED_ITERATING
