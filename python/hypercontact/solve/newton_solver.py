@@ -38,12 +38,10 @@ class NewtonSolver:
         # lower |R| by less than the fraction stall_decrease). Not a backtracking first try: the
         # sharp contact law's hemisphere (tests/hard/test_chattering.py) sits at |R| 1.39–1.38 for
         # 12 iterations and then converges in 6
-        self.stall_tests = {}
-        if solver["stall_decrease"] > 0:
-            if solver["stall_its"] > 0:
-                self.stall_tests["basic"] = StallTest(self.snes, solver["stall_decrease"], 0, solver["stall_its"])
-            self.stall_tests["bt fallback"] = StallTest(self.snes, solver["stall_decrease"], 2, 0)
-        self._stall_test = None  # the one the running solve uses
+        on = solver["stall_decrease"] > 0
+        self.cycle_stop = (StallTest(self.snes, solver["stall_decrease"], 0, solver["stall_its"])
+                           if on and solver["stall_its"] > 0 else None)
+        self.crawl_stop = StallTest(self.snes, solver["stall_decrease"], 2, 0) if on else None
         self.history = IterationHistory(model.contacts)
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
@@ -87,7 +85,7 @@ class NewtonSolver:
         solve, the norms and reason are the last solve's."""
         w = self.model.w
         start = w.x.array.copy() if self.fallback else None
-        ok, its, norms, reason = self._newton(self.stall_tests.get(line_search_of(self.snes)))
+        ok, its, norms, reason = self._newton(self._stall_stop(fallback=False))
         if ok or self.fallback is None or reason == INVERTED_ELEMENT:
             return ok, its, norms, reason
         w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
@@ -95,12 +93,20 @@ class NewtonSolver:
         primary = set_line_search(self.snes, self.fallback)
         self.snes.setTolerances(max_it=self.fallback_max_it)
         try:
-            ok, more, norms, reason = self._newton(self.stall_tests.get(
-                "bt fallback" if self.fallback == "bt" else self.fallback))
+            ok, more, norms, reason = self._newton(self._stall_stop(fallback=True))
         finally:
             set_line_search(self.snes, primary)
             self.snes.setTolerances(max_it=self.max_it)
         return ok, its + more, norms, reason
+
+    def _stall_stop(self, fallback):
+        """The stall stop for the solve about to run with the SNES's line search:
+        the cycle stop for full steps, the crawl stop for a backtracking
+        fallback, none for a backtracking first try (or another line search)."""
+        line_search = line_search_of(self.snes)
+        if line_search == "basic":
+            return self.cycle_stop
+        return self.crawl_stop if fallback and line_search == "bt" else None
 
     def _newton(self, stall_test=None):
         """One SNES solve (``stall_test``: its convergence test, else PETSc's
@@ -110,7 +116,6 @@ class NewtonSolver:
         model, x = self.model, self.model.problem.x
         model.w.vector.copy(x)
         self.history.reset()
-        self._stall_test = stall_test
         self.snes.setConvergenceTest(stall_test if stall_test is not None else "default")
         try:
             self.snes.solve(None, x)
@@ -120,7 +125,7 @@ class NewtonSolver:
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
         name = converged_reason_name(reason)
-        if self._stall_test is not None and self._stall_test.stalled:
+        if stall_test is not None and stall_test.stalled:
             name = STALLED  # (SNES was told DIVERGED_MAX_IT)
         self.last_snes_reason = name
         record = {"line_search": line_search_of(self.snes), "newton_iterations": self.snes.getIterationNumber(),
