@@ -47,19 +47,26 @@ void declare_obstacle(py::module_& m) {
             .format(py::cast(p.point).attr("tolist")(), py::cast(p.normal).attr("tolist")());
       });
 
-  py::class_<RigidBox>(m, "RigidBox", "Rigid axis-aligned box occupying [lo, hi]")
-      .def(py::init([](const RealArray& lo, const RealArray& hi) {
-             const RigidBox box{as_vector3(lo, "lo"), as_vector3(hi, "hi")};
+  py::class_<RigidBox>(m, "RigidBox",
+                       "Rigid axis-aligned box occupying [lo, hi], its edges and corners rounded "
+                       "with radius (0: sharp)")
+      .def(py::init([](const RealArray& lo, const RealArray& hi, double radius) {
+             const RigidBox box{as_vector3(lo, "lo"), as_vector3(hi, "hi"), radius};
              if (!(box.lo.array() < box.hi.array()).all())
                throw py::value_error("RigidBox: need lo < hi in every coordinate");
+             if (!(radius >= 0) || !std::isfinite(radius) ||
+                 !(2 * radius <= (1 + 1e-12) * (box.hi - box.lo).minCoeff()))
+               throw py::value_error(
+                   "RigidBox: need 0 <= radius <= half the shortest side (hi - lo)");
              return box;
            }),
-           py::arg("lo"), py::arg("hi"))
+           py::arg("lo"), py::arg("hi"), py::arg("radius") = 0.0)
       .def_readonly("lo", &RigidBox::lo)
       .def_readonly("hi", &RigidBox::hi)
+      .def_readonly("radius", &RigidBox::radius)
       .def("__repr__", [](const RigidBox& b) {
-        return py::str("RigidBox(lo={}, hi={})")
-            .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")());
+        return py::str("RigidBox(lo={}, hi={}, radius={})")
+            .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")(), b.radius);
       });
 
   py::class_<RigidCylinder>(m, "RigidCylinder",

@@ -185,6 +185,21 @@ TEST(RigidContactEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) {
   EXPECT_LE(box.tangent_error(), 1e-6);
   EXPECT_EQ(smoothed.evaluate(smoothed.x).elements.size(), 4u);
   EXPECT_LE(smoothed.tangent_error(), 1e-6);
+  // A box with rounded edges (r = 0.2): nodes pressed into a rounded edge and a rounded corner,
+  // where the normal turns with the node, and under the flat top.
+  const RigidScene rounded{RigidBox{{-1, -1, -1}, {1, 1, 1}, 0.2},
+                           {0.9, 0.1, 0.92, 0.9, 0.9, 0.92, 0.2, 0.1, 0.97},
+                           {0.3, 0.2, 0.4}};
+  const RigidContactEvaluation r = rounded.evaluate(rounded.x);
+  ASSERT_EQ(r.elements.size(), 3u);
+  std::vector<Feature> features;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const ObstacleProjection p = project(rounded.obstacle, Eigen::Vector3d(&rounded.x[3 * i]));
+    EXPECT_LT(p.gap, 0);
+    features.push_back(p.feature);
+  }
+  EXPECT_EQ(features, (std::vector<Feature>{Feature::Edge, Feature::Vertex, Feature::Face}));
+  EXPECT_LE(rounded.tangent_error(), 1e-6);
 }
 
 TEST(RigidContactEvaluation, RejectsDofsOfTheWrongSize) {

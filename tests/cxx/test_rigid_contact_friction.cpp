@@ -1,8 +1,8 @@
 // Normal penalty and Coulomb friction of all slave nodes against one obstacle, in one evaluation:
 // each element is its node's normal penalty plus its friction (or the friction alone), the state
 // arrays are the kernels', and the stored tangent is the derivative of the stored residual
-// (central differences) in the open, stick and slip branches on a plane and a cylinder, with
-// multipliers and with smoothing.
+// (central differences) in the open, stick and slip branches on a plane, a cylinder and the
+// rounded edge and corner of a box, with multipliers and with smoothing.
 #include <gtest/gtest.h>
 
 #include <hypercontact/rigid_contact_friction.hpp>
@@ -58,6 +58,16 @@ FrictionScene cylinder_scene() {
           {0, 0, 0, 0.5, 0, 0, 0, 0, 0}};
 }
 
+/// Two nodes pressed into the rounded edge and the rounded corner of a box with r = 0.2 (the
+/// normal turns with the node, as on the cylinder): stick (a small slip from ξ_old), slip.
+FrictionScene rounded_box_scene() {
+  return {RigidBox{{-1, -1, -1}, {1, 1, 1}, 0.2},
+          {0.9, 0.1, 0.92, 0.9, 0.9, 0.92},
+          {0.5, 0.25},
+          {0.9, 0.1001, 0.92, 0.9, 0.6, 0.92},
+          {0, 0, 0, 0, 0, 0}};
+}
+
 std::set<StickSlip> states(const RigidFrictionEvaluation& e) {
   std::set<StickSlip> s;
   for (std::int8_t v : e.state) s.insert(static_cast<StickSlip>(v));
@@ -106,7 +116,7 @@ TEST(RigidFrictionEvaluation, ElementsAreNormalPlusFrictionOfTheirNode) {
 }
 
 TEST(RigidFrictionEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) {
-  for (const FrictionScene& scene : {plane_scene(), cylinder_scene()}) {
+  for (const FrictionScene& scene : {plane_scene(), cylinder_scene(), rounded_box_scene()}) {
     const RigidFrictionEvaluation e = scene.evaluate(scene.x);
     EXPECT_TRUE(states(e).count(StickSlip::Stick) && states(e).count(StickSlip::Slip));
     EXPECT_LE(scene.tangent_error(), 1e-6);

@@ -31,9 +31,14 @@ struct RigidPlane {
 };
 
 /// Axis-aligned box occupying [lo, hi] (current position); requires lo < hi componentwise.
+/// With `radius` r > 0 its edges and corners are rounded: the box is the set of points within
+/// r of the inner box [lo + r, hi − r] (a flat punch whose edges are quarter cylinders of radius
+/// r and whose corners are eighth spheres); requires 2r ≤ hi − lo (where 2r is a side, to
+/// round-off, the inner box is flat in that direction). r = 0: sharp edges.
 struct RigidBox {
   Eigen::Vector3d lo;
   Eigen::Vector3d hi;
+  double radius = 0.0;
 };
 
 /// Circular cylinder of infinite length: axis through `point` along the unit vector `axis`,

@@ -26,7 +26,7 @@ def make_obstacle(kind, where, pose):
     if kind == "plane":
         return _cpp.RigidPlane(pose.point(where["point"]), pose.direction(where["normal"]))
     if kind == "box":  # the scene allows no rotation of a box: it stays axis-aligned
-        return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]))
+        return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]), float(where.get("edge_radius", 0.0)))
     if kind == "cylinder":
         return _cpp.RigidCylinder(pose.point(where["point"]), pose.direction(where["axis"]),
                                   float(where["radius"]), bool(where.get("inside", False)))
@@ -93,7 +93,8 @@ class RigidObstacle:
         facets, each spread over its facet's nodes) or "auto"
         (:func:`rigid_integration`)."""
         self.kind = spec["obstacle"]
-        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center", "inside")
+        self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center", "inside",
+                                          "edge_radius")
                      if k in spec}
         self.axis, self.pivot = rotation_pivot(spec)
         self.comm = V.mesh.comm

@@ -113,13 +113,20 @@ class BoxContact(RigidContact):
     obstacle: Literal["box"]
     lo: vector(COORDINATES) = [0.0, 0.0, 0.0]
     hi: vector(COORDINATES) = [1.0, 1.0, 1.0]
+    #: its edges and corners rounded with this radius (0: sharp, the paper's punch)
+    edge_radius: number(NON_NEGATIVE, LENGTH) = 0.0
 
     @root_validator(skip_on_failure=True)
     def sides_that_stay_positive(cls, values):
-        """lo < hi, also at lo + λ motion < hi + λ motion in floating point."""
+        """lo < hi, also at lo + λ motion < hi + λ motion in floating point;
+        the rounding fits."""
         lo, hi, motion = values["lo"], values["hi"], values["motion"]
         if not all(l < h for l, h in zip(lo, hi)):
             raise Invalid(f"box needs lo < hi in every coordinate, found lo={lo} hi={hi}", "hi")
+        shortest = min(h - l for l, h in zip(lo, hi))
+        if 2 * values["edge_radius"] > (1 + 1e-12) * shortest:  # (2r = the side to round-off: a rounded slab)
+            raise Invalid(f"edge_radius {values['edge_radius']:g} does not fit the box: at most half its shortest "
+                          f"side ({shortest:g} from lo={lo} to hi={hi})", "edge_radius")
         reach = max(abs(v + f * m) for f in (0.0, 1.0) for corner in (lo, hi) for v, m in zip(corner, motion))
         if min(h - l for l, h in zip(lo, hi)) < 1e-9 * reach:
             raise Invalid(f"box sides must be at least 1e-9 × the largest coordinate the box reaches ({reach:g}, "
