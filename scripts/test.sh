@@ -25,7 +25,7 @@ if grep -qw avx /proc/cpuinfo 2>/dev/null; then
     tests/behaviour/test_robustness.py tests/verification/test_punch_friction.py tests/verification/test_friction.py \
     tests/verification/test_friction_block.py tests/verification/test_surface_friction.py \
     tests/behaviour/test_step_control.py tests/behaviour/test_contact_protocol.py tests/hard \
-    tests/behaviour/test_inverted_elements.py tests/unit/test_stall_test.py \
+    tests/behaviour/test_inverted_elements.py tests/unit/test_stall_test.py tests/behaviour/test_predictor.py \
     tests/verification/test_oring.py tests/verification/test_limit_points.py tests/verification/test_continuation_deformable.py \
     tests/verification/test_self_contact.py tests/verification/test_tube_collapse.py
 fi

@@ -161,3 +161,21 @@ def test_without_a_stall_both_stops_are_petsc_default(line_search):
     reason, norms, x = solve_cubic(None, line_search)
     reason_s, norms_s, x_s = solve_cubic(lambda snes: StallTest(snes, 0.05, window=2, cycle_window=4), line_search)
     assert reason_s == reason and np.array_equal(norms_s, norms) and np.array_equal(x_s, x)
+
+
+def test_a_reference_norm_sets_the_relative_and_divergence_tolerances():
+    """A solve that starts from a prediction near the solution (|R_0| = 1e-6
+    where the unpredicted start had 100) stops at rtol × 100, not rtol × 1e-6
+    (below round-off); a smaller reference than the solve's own |R_0| changes
+    nothing. The divergence tolerance measures against the same |R_0|."""
+    test = StallTest(snes_with(rtol=1e-6, atol=1e-20), 0.0, 0, 0)
+    assert run(test, [1e-6, 5e-5])[-1] == R.CONVERGED_ITERATING  # rtol × 1e-6: not yet
+    test.reference = 100.0
+    assert run(test, [1e-6, 5e-5])[-1] == R.CONVERGED_FNORM_RELATIVE  # below rtol × 100
+    assert run(test, [1e-6, 2e-4])[-1] == R.CONVERGED_ITERATING
+    assert run(test, [1e-6, 1e-3])[-1] == R.CONVERGED_ITERATING  # 1e3 × |R_0|, not 1e4 × the reference
+    test.reference = 1e-9
+    assert run(test, [1e-6, 5e-13])[-1] == R.CONVERGED_FNORM_RELATIVE
+    assert run(test, [1e-6, 5e-12])[-1] == R.CONVERGED_ITERATING
+    test.reference = 0.0
+    assert run(test, [1e-6, 2e-2])[-1] == R.DIVERGED_DTOL

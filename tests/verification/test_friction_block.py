@@ -184,12 +184,12 @@ def test_cut_back_restores_the_history_exactly(out_dir, monkeypatch):
         sim = Simulation(scene.load(data), MPI.COMM_WORLD, log=quiet)
         solve, calls = original_solve, []
 
-        def failing_once(newton):
+        def failing_once(newton, *args):
             calls.append(sim.contacts[0].geometry.load_factor)
             if len(calls) != 6:
-                return solve(newton)
+                return solve(newton, *args)
             if real_attempt:
-                ok, its, norms, reason = solve(newton)
+                ok, its, norms, reason = solve(newton, *args)
                 assert its >= 1 and ok  # the attempt iterated, through the contact code, to a solution
             return False, 0, [], "FORCED_FAILURE"
 

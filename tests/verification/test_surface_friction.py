@@ -165,12 +165,12 @@ def test_cut_back_restores_the_deformable_master_history_exactly(tmp_path, monke
         run_phase(sim, {1: [0.0, 0.0, -PRESS]}, out / "press")
         solve, calls = original_solve, []
 
-        def failing_once(newton):
+        def failing_once(newton, *args):
             calls.append(sim.load_factor.value.item())
             if len(calls) != 2:
-                return solve(newton)
+                return solve(newton, *args)
             if real_attempt:
-                ok, its, norms, reason = solve(newton)
+                ok, its, norms, reason = solve(newton, *args)
                 assert its >= 1
             return False, 0, [], "FORCED_FAILURE"
 

@@ -138,7 +138,8 @@ class ResultsWriter:
                 else None
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
-                   active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None, phase=0):
+                   active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None, phase=0,
+                   residual_reference=None):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         step = len(self.steps) + 1
         # fields.xdmf's time: the load factor, or with phases the accumulated τ (λ restarts in each phase)
@@ -166,7 +167,9 @@ class ResultsWriter:
         values = self.path.values(phase, load_factor) if self.pressures else {}
         for name, i in self.pressures.items():
             row[name] = values[("pressure", i)]
-        self.steps.append({**row, "residual_norms": norms, "active_set_settled_at": settled_from,
+        reference = max(norms[0], residual_reference or 0.0) if norms else residual_reference
+        self.steps.append({**row, "residual_norms": norms, "residual_reference": reference,
+                           "active_set_settled_at": settled_from,
                            "active_set_changes": active_set_changes, "update_norms": list(update_norms),
                            "augmentations": augmentations})
         if self.rank0:

@@ -113,6 +113,7 @@ class Steps(SceneModel):
     stop_component: string(one_of(("x", "y", "z"), '"x", "y" or "z"')) = "x"
     stop_value: number() = 1.0
     locate_limits: Boolean = True
+    predictor: string(one_of(("none", "secant"), '"none" or "secant"')) = "none"
 
     @root_validator(skip_on_failure=True)
     def min_below_initial(cls, values):

@@ -28,6 +28,7 @@ class LoadStepping:
         self.newton = NewtonSolver(model, scene["solver"], timers)
         self.augmentations = 0
         self.linear_its = 0  # Krylov iterations of the last attempt, all its Newton solves
+        self.reference = 0.0  # the last attempt's reference |R_0| (attempt): 0 unless it was predicted
 
     def update_pairing(self, fresh):
         """The model's pairing (Model.update_pairing); a new matrix goes to the solver."""
@@ -37,17 +38,30 @@ class LoadStepping:
                 self.newton.use_matrix(self.model.problem.A)
         return changed
 
-    def attempt(self, step, lam, dlam, attempt):
-        """One attempt at λ → λ + Δλ: (converged, Newton iterations, last norms, reason)."""
-        self.model.set_load_factor(lam + dlam)
+    def attempt(self, step, lam, dlam, attempt, prediction=None):
+        """One attempt at λ → λ + Δλ from the last converged state, or from
+        ``prediction`` (an array of the unknown): (converged, Newton iterations,
+        last norms, reason)."""
+        model = self.model
+        model.set_load_factor(lam + dlam)
         self.newton.solves.clear()  # the attempt's own solves: its story and its Krylov count
+        reference = 0.0
+        if prediction is not None:
+            # the relative tolerance measures against |R| at the last converged state under the new
+            # load, the |R_0| of the same solve without the prediction: the predictor changes where
+            # Newton starts, not where it stops (one residual evaluation per step)
+            self.update_pairing(fresh=True)
+            reference = self.newton.residual_norm()
+            model.w.x.array[:] = prediction
+            model.sync_displacement()
+        self.reference = reference
         self.update_pairing(fresh=True)
-        ok, its, norms, reason = self.newton.solve()
+        ok, its, norms, reason = self.newton.solve(reference)
         for _ in range(5 if ok else 0):
             # a point found a master facet outside the pattern: solve again with it
             if not self.update_pairing(fresh=False):
                 break
-            ok, more, norms, reason = self.newton.solve()
+            ok, more, norms, reason = self.newton.solve(reference)
             its += more
             if not ok:
                 break
@@ -79,27 +93,44 @@ class LoadStepping:
             story["inverted_element"] = self.newton.inverted
         return story
 
-    def run(self, observer, out_dir, state=None):
+    def run(self, observer, out_dir, state=None, arrays=None):
         """Solve the load path; ``observer.converged(lam, its, norms, reason,
-        history, controller_state)`` after each converged step, ``observer.failed(story)``
+        history, controller_state, **arrays)`` after each converged step (what a
+        checkpoint needs to resume it: ``state`` and ``arrays``), ``observer.failed(story)``
         after each failed attempt. Raises StepFailure when no cut-back is left."""
         model, steps = self.model, self.scene["steps"]
         stepper = LoadStepper.from_scene(steps)
+        # the secant predictor: a step's first attempt starts from the last two converged states
+        # extrapolated to its load, u_n + (Δλ/Δλ_n)(u_n − u_n−1), not from u_n (none for a path's
+        # first step, nor for the retries after a cut-back)
+        secant = steps["predictor"] == "secant"
+        u_step = dlam_step = None  # the last converged step's increment of the unknown and its Δλ
         if state is not None:
             stepper.load_state_dict(state)
             model.set_load_factor(stepper.lam)
+            if secant and state.get("predictor_dlam") and arrays and "predictor_step" in arrays:
+                u_step, dlam_step = arrays["predictor_step"], state["predictor_dlam"]
         u_saved = model.w.x.array.copy()
         while not stepper.done():
             lam, dlam = stepper.lam, stepper.increment()
             number = observer.steps_written() + 1
-            ok, its, norms, reason = self.attempt(number, lam, dlam, stepper.cuts)
+            # a step's first attempt only: a retry after a cut-back starts from u_n, where the previous
+            # step converged, not from an extrapolation that may have led it astray
+            prediction = (u_saved + (dlam / dlam_step) * u_step
+                          if u_step is not None and stepper.cuts == 0 else None)
+            ok, its, norms, reason = self.attempt(number, lam, dlam, stepper.cuts, prediction)
             if ok:
                 stepper.converged(its)
                 model.problem.prepare_contacts()  # the converged state: commit and results read it
                 for c in model.contacts:
                     c.commit()
+                if secant:
+                    u_step, dlam_step = model.w.x.array - u_saved, dlam
                 u_saved[:] = model.w.x.array
-                observer.converged(stepper.lam, its, norms, reason, self.newton.history, stepper.state_dict())
+                controller, saved = stepper.state_dict(), {}
+                if u_step is not None:
+                    controller["predictor_dlam"], saved["predictor_step"] = dlam_step, u_step
+                observer.converged(stepper.lam, its, norms, reason, self.newton.history, controller, **saved)
                 continue
             stop = not stepper.can_cut()
             story = self.failure_story(number, lam, dlam, stepper.cuts, reason, norms)

@@ -279,9 +279,18 @@ class StallTest:
       new smallest |R| (by the fraction ``min_decrease``), and |R| back
       within that fraction of its value two or three iterations before. The
       706k frictional punch's full steps fell to 0.003 and then alternated
-      0.019, 0.004, 0.019, … for 20 iterations to max_it."""
+      0.019, 0.004, 0.019, … for 20 iterations to max_it.
+
+    With neither stop (``window = cycle_window = 0``) it is the default test,
+    and either way ``reference`` (set before a solve; 0: none) is the |R_0|
+    the relative and divergence tolerances measure against when it is larger
+    than the solve's own first |R|: a solve that starts from a prediction
+    (steps.predictor) close to the solution stops where the same solve from
+    the last converged state would have stopped, not at rtol × a |R_0| that
+    may be below round-off."""
 
     def __init__(self, snes, min_decrease, window=2, cycle_window=0):
+        self.reference = 0.0
         self.min_decrease, self.window, self.cycle_window = float(min_decrease), int(window), int(cycle_window)
         self.rtol, self.atol = snes.getTolerances()[:2]
         self.max_funcs = snes.getMaxFunctionEvaluations()
@@ -297,7 +306,8 @@ class StallTest:
         R = PETSc.SNES.ConvergedReason
         if it == 0:
             self.reset()
-            self.ttol, self.rnorm0 = fnorm * self.rtol, fnorm
+            self.rnorm0 = max(fnorm, self.reference)
+            self.ttol = self.rnorm0 * self.rtol
         self.norms.append(fnorm)
         if fnorm < (1.0 - self.min_decrease) * self.best or it == 0:
             self.best, self.since_best = fnorm, 0

@@ -42,6 +42,7 @@ class NewtonSolver:
         self.cycle_stop = (StallTest(self.snes, solver["stall_decrease"], 0, solver["stall_its"])
                            if on and solver["stall_its"] > 0 else None)
         self.crawl_stop = StallTest(self.snes, solver["stall_decrease"], 2, 0) if on else None
+        self.no_stop = StallTest(self.snes, 0.0, 0, 0)  # the default test, with a reference |R_0|
         self.history = IterationHistory(model.contacts)
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
@@ -60,6 +61,7 @@ class NewtonSolver:
         if model.problem.linear_kind == "iterative":
             self.snes.getKSP().setMonitor(self._krylov_monitor)
         self.inverted = None  # InversionCheck's answer at the end of the last solve
+        self.reference = 0.0  # the current solve's reference |R_0| (solve)
         self.last_snes_reason = None
 
     def use_matrix(self, A):
@@ -80,9 +82,19 @@ class NewtonSolver:
             self.krylov_s += now - self._t_krylov
         self._t_krylov = now
 
-    def solve(self):
+    def residual_norm(self):
+        """|R| at the current unknown and load factor (one residual evaluation)."""
+        p = self.model.problem
+        self.model.w.vector.copy(p.x)
+        p.residual(None, p.x, p.b)
+        return p.b.norm()
+
+    def solve(self, reference=0.0):
         """(converged, iterations, norms, reason); the count includes a fallback
-        solve, the norms and reason are the last solve's."""
+        solve, the norms and reason are the last solve's. ``reference``: the |R_0|
+        the relative tolerance measures against if larger than the solve's own
+        (a predicted start: the |R| of the unpredicted one)."""
+        self.reference = reference
         w = self.model.w
         start = w.x.array.copy() if self.fallback else None
         ok, its, norms, reason = self._newton(self._stall_stop(fallback=False))
@@ -102,11 +114,16 @@ class NewtonSolver:
     def _stall_stop(self, fallback):
         """The stall stop for the solve about to run with the SNES's line search:
         the cycle stop for full steps, the crawl stop for a backtracking
-        fallback, none for a backtracking first try (or another line search)."""
+        fallback, neither for a backtracking first try (or another line search);
+        each with the solve's reference |R_0|."""
         line_search = line_search_of(self.snes)
         if line_search == "basic":
-            return self.cycle_stop
-        return self.crawl_stop if fallback and line_search == "bt" else None
+            test = self.cycle_stop
+        else:
+            test = self.crawl_stop if fallback and line_search == "bt" else None
+        test = test if test is not None else self.no_stop
+        test.reference = self.reference
+        return test
 
     def _newton(self, stall_test=None):
         """One SNES solve (``stall_test``: its convergence test, else PETSc's

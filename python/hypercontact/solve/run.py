@@ -31,13 +31,14 @@ class Observers:
     def steps_written(self):
         return len(self.writer.steps)
 
-    def converged(self, lam, its, norms, reason, history, controller):
-        """A converged load-control step."""
+    def converged(self, lam, its, norms, reason, history, controller, **arrays):
+        """A converged load-control step (``arrays``: the driver's own, for the checkpoint)."""
         with self.run.timers("output"):
             changes, flips = history.active_set_changes(), history.stick_slip_changes()
             row = self.writer.write_step(lam, its, norms, self.run.split(), history.last_active_set_change(),
                                          history.update_norms, changes, flips, self.run.driver.augmentations,
-                                         self.run.driver.linear_its, phase=self.model.phase)
+                                         self.run.driver.linear_its, phase=self.model.phase,
+                                         residual_reference=self.run.driver.reference)
         for n, what in ((changes, "contact active set"), (flips, "stick/slip status")):
             if n >= self.steps["chatter_warning"]:
                 self.log(f"   the {what} changed in {n} Newton iterations of this step "
@@ -47,7 +48,7 @@ class Observers:
         where = f"{self.run.phase_label()}λ = {lam:.4f}"
         self.log(f"step {row['step']:3d}  {where}  Newton {its:2d}{krylov}  "
                  f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(self.model.path.progress(self.model.phase, lam))}")
-        self.run.save_checkpoint(self.writer, controller)
+        self.run.save_checkpoint(self.writer, controller, **arrays)
 
     def converged_path(self, lam, its, norms, reached, target, controller, du_prev):
         """A converged continuation step."""
@@ -204,7 +205,7 @@ class Run:
                     self.log(f"phase {k + 1} {spec.name!r}: τ from {spec.start:g} to {spec.start + spec.length:g}"
                              + switched)
                 if isinstance(self.driver, LoadStepping):
-                    self.driver.run(observers, out_dir, resumed)
+                    self.driver.run(observers, out_dir, resumed, arrays)
                     last = (k, 1.0)
                 else:  # continuation ends where its probe reaches stop_value: the next phase starts there
                     self.driver.run(observers, out_dir, resumed, arrays)
