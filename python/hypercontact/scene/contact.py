@@ -128,7 +128,7 @@ class BoxContact(RigidContact):
             raise Invalid(f"edge_radius {values['edge_radius']:g} does not fit the box: at most half its shortest "
                           f"side ({shortest:g} from lo={lo} to hi={hi})", "edge_radius")
         reach = max(abs(v + f * m) for f in (0.0, 1.0) for corner in (lo, hi) for v, m in zip(corner, motion))
-        if min(h - l for l, h in zip(lo, hi)) < 1e-9 * reach:
+        if shortest < 1e-9 * reach:
             raise Invalid(f"box sides must be at least 1e-9 × the largest coordinate the box reaches ({reach:g}, "
                           f"with its motion), found lo={lo} hi={hi}", "hi")
         return values

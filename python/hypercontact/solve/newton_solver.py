@@ -125,15 +125,15 @@ class NewtonSolver:
         test.reference = self.reference
         return test
 
-    def _newton(self, stall_test=None):
-        """One SNES solve (``stall_test``: its convergence test, else PETSc's
-        default). After it the unknown holds its end state (converged)
+    def _newton(self, stall_test):
+        """One SNES solve (``stall_test``: its convergence test, a StallTest from
+        _stall_stop). After it the unknown holds its end state (converged)
         or the last iterate SNES evaluated (failed); a state with det F ≤ 0
         somewhere fails with INVERTED_ELEMENT."""
         model, x = self.model, self.model.problem.x
         model.w.vector.copy(x)
         self.history.reset()
-        self.snes.setConvergenceTest(stall_test if stall_test is not None else "default")
+        self.snes.setConvergenceTest(stall_test)
         try:
             self.snes.solve(None, x)
         finally:
@@ -142,7 +142,7 @@ class NewtonSolver:
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
         name = converged_reason_name(reason)
-        if stall_test is not None and stall_test.stalled:
+        if stall_test.stalled:
             name = STALLED  # (SNES was told DIVERGED_MAX_IT)
         self.last_snes_reason = name
         record = {"line_search": line_search_of(self.snes), "newton_iterations": self.snes.getIterationNumber(),
