@@ -49,9 +49,9 @@ void declare_obstacle(py::module_& m) {
 
   py::class_<RigidBox>(m, "RigidBox",
                        "Rigid axis-aligned box occupying [lo, hi], its edges and corners rounded "
-                       "with radius (0: sharp)")
-      .def(py::init([](const RealArray& lo, const RealArray& hi, double radius) {
-             const RigidBox box{as_vector3(lo, "lo"), as_vector3(hi, "hi"), radius};
+                       "with radius (0: sharp); blended: a rounding of continuous curvature")
+      .def(py::init([](const RealArray& lo, const RealArray& hi, double radius, bool blended) {
+             const RigidBox box{as_vector3(lo, "lo"), as_vector3(hi, "hi"), radius, blended};
              if (!(box.lo.array() < box.hi.array()).all())
                throw py::value_error("RigidBox: need lo < hi in every coordinate");
              if (!(radius >= 0) || !std::isfinite(radius) ||
@@ -60,13 +60,15 @@ void declare_obstacle(py::module_& m) {
                    "RigidBox: need 0 <= radius <= half the shortest side (hi - lo)");
              return box;
            }),
-           py::arg("lo"), py::arg("hi"), py::arg("radius") = 0.0)
+           py::arg("lo"), py::arg("hi"), py::arg("radius") = 0.0, py::arg("blended") = false)
       .def_readonly("lo", &RigidBox::lo)
       .def_readonly("hi", &RigidBox::hi)
       .def_readonly("radius", &RigidBox::radius)
+      .def_readonly("blended", &RigidBox::blended)
       .def("__repr__", [](const RigidBox& b) {
-        return py::str("RigidBox(lo={}, hi={}, radius={})")
-            .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")(), b.radius);
+        return py::str("RigidBox(lo={}, hi={}, radius={}, blended={})")
+            .format(py::cast(b.lo).attr("tolist")(), py::cast(b.hi).attr("tolist")(), b.radius,
+                    b.blended);
       });
 
   py::class_<RigidCylinder>(m, "RigidCylinder",

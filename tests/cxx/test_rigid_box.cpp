@@ -1,10 +1,13 @@
 // Rigid box: signed distance against an independent formula, features, ties, derivatives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <hypercontact/obstacle.hpp>
 #include <hypercontact/rigid_box.hpp>
+#include <limits>
 #include <random>
+#include <utility>
 
 #include "finite_difference.hpp"
 
@@ -219,6 +222,163 @@ TEST(RoundedBox, ZeroRadiusIsTheSharpBox) {
     ASSERT_EQ(a.dnormal_dx, b.dnormal_dx);
   }
   EXPECT_FALSE(std::signbit(project_to_box(sharp, {0.3, 0.2, 0.0}).gap));  // on the surface: +0
+}
+
+// --- Blended rounding: within r/2 of the superellipse-rounded inner solid S ------------------
+
+const RigidBox blended{{-1, -0.5, 0}, {1, 0.5, 0.4}, 0.15, true};
+
+/// Distance from e ≥ 0 (outside the unit-free solid Σ yᵢ⁴ ≤ a⁴ of the positive orthant, all
+/// eᵢ > 0 in the first `k` coordinates, zero after) to its surface, by brute force: the surface
+/// parametrised as yᵢ = a √uᵢ with u on the unit sphere's positive octant (Σ yᵢ⁴ = a⁴ Σ uᵢ²),
+/// a grid and then shrinking local searches. Independent of the library's Lagrange equations.
+double brute_force_superellipse_distance(const Eigen::Vector3d& e, double a, int k) {
+  const auto point = [&](double t, double f) {  // u = (sin f cos t, sin f sin t, cos f)
+    Eigen::Vector3d u =
+        k == 2 ? Eigen::Vector3d(std::cos(t), std::sin(t), 0)
+               : Eigen::Vector3d(std::sin(f) * std::cos(t), std::sin(f) * std::sin(t), std::cos(f));
+    return Eigen::Vector3d(a * u.cwiseMax(0.0).cwiseSqrt());
+  };
+  const double quarter = std::acos(0.0);
+  double best = std::numeric_limits<double>::infinity(), bt = 0, bf = quarter;
+  const int n = 400;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= (k == 2 ? 0 : n); ++j) {
+      const double t = quarter * i / n, f = k == 2 ? quarter : quarter * j / n;
+      const double dist = (e - point(t, f)).norm();
+      if (dist < best) best = dist, bt = t, bf = f;
+    }
+  for (double h = quarter / n; h > 1e-15; h *= 0.7)  // pattern search, the step shrinking
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& [dt, df] : {std::pair{h, 0.0}, {-h, 0.0}, {0.0, h}, {0.0, -h}}) {
+        if (k == 2 && df != 0) continue;
+        const double t = std::clamp(bt + dt, 0.0, quarter), f = std::clamp(bf + df, 0.0, quarter);
+        const double dist = (e - point(t, f)).norm();
+        if (dist < best) best = dist, bt = t, bf = f, moved = true;
+      }
+    }
+  return best;
+}
+
+TEST(BlendedBox, SignedDistanceMatchesABruteForceSearch) {
+  // Outside S (up to r/2 into the rounding and beyond it outwards), round an edge and a corner.
+  const double r = blended.radius, a = r / 2;
+  const Eigen::Vector3d corner_of_B(1 - r, -0.5 + r, 0 + r);  // B's corner at +x, −y, −z
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0, penetrated = 0;
+  for (int k : {2, 3})
+    for (int sample = 0; sample < 20; ++sample) {
+      Eigen::Vector3d e(unit(rng), unit(rng), k == 3 ? unit(rng) : 0.0);
+      e *= a * (0.6 + 1.4 * unit(rng)) / e.norm();
+      if (std::sqrt(std::sqrt(e.array().pow(4).sum())) <= a * (1 + 1e-3)) continue;  // inside S
+      // e is measured outwards from B's corner: +x, −z and (at the corner) −y; an edge point
+      // is at y = 0.1, inside B's y-range
+      const Eigen::Vector3d x(corner_of_B[0] + e[0], k == 2 ? 0.1 : corner_of_B[1] - e[2],
+                              corner_of_B[2] - e[1]);
+      const ObstacleProjection p = project_to_box(blended, x);
+      EXPECT_NEAR(p.gap, brute_force_superellipse_distance(e, a, k) - a, 1e-11)
+          << "x = " << x.transpose();
+      EXPECT_EQ(p.feature, k == 2 ? Feature::Edge : Feature::Vertex);
+      EXPECT_NEAR(p.normal.norm(), 1.0, 1e-14);
+      EXPECT_GT(p.normal[0], 0);
+      EXPECT_LT(p.normal[2], 0);
+      ++checked;
+      penetrated += p.gap < 0;
+    }
+  EXPECT_GE(checked, 20);
+  EXPECT_GE(penetrated, 3);  // the sample covers points pressed into the rounding
+}
+
+TEST(BlendedBox, FacesAndInsideAreTheCircularBoxs) {
+  const RigidBox circular{blended.lo, blended.hi, blended.radius};
+  for (const Eigen::Vector3d x :
+       {Eigen::Vector3d(0.3, 0.1, -0.02), Eigen::Vector3d(0.3, 0.1, 0.02),
+        Eigen::Vector3d(0.3, 0.1, 0.18), Eigen::Vector3d(1.2, 0.1, 0.2)}) {
+    const ObstacleProjection p = project_to_box(blended, x), q = project_to_box(circular, x);
+    EXPECT_EQ(p.gap, q.gap);
+    EXPECT_EQ(p.normal, q.normal);
+    EXPECT_EQ(p.dnormal_dx, q.dnormal_dx);
+  }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-1.3, 1.3);
+  const RigidBox sharp_blended{box.lo, box.hi, 0.0, true};
+  for (int k = 0; k < 200; ++k) {  // r = 0: the sharp box, blended or not
+    const Eigen::Vector3d x(coordinate(rng), coordinate(rng), coordinate(rng));
+    EXPECT_EQ(project_to_box(sharp_blended, x).gap, project_to_box(box, x).gap);
+  }
+}
+
+TEST(BlendedBox, DerivativesInEveryBranch) {
+  // ∂g/∂x = n and ∂n/∂x exact: outside and pressed into an edge and a corner (less than r/2
+  // deep), and the face branches.
+  const auto check = [](const Eigen::Vector3d& x, Feature feature, bool penetrated) {
+    ASSERT_EQ(project_to_box(blended, x).gap < 0, penetrated) << x.transpose();
+    expect_exact_derivatives(blended, x, feature);
+  };
+  check({0.95, 0.1, -0.02}, Feature::Edge, false);
+  check({0.9, 0.1, 0.02}, Feature::Edge, true);
+  check({0.86, 0.1, -0.001}, Feature::Edge, false);  // just past the junction, nearly flat
+  check({0.95, -0.42, -0.02}, Feature::Vertex, false);
+  check({0.9, -0.4, 0.02}, Feature::Vertex, true);
+  check({0.3, 0.1, -0.02}, Feature::Face, false);
+  check({0.3, 0.1, 0.02}, Feature::Face, true);
+  // Deeper than r/2 into the rounding, the level set of ρ₄ stands in for the distance: n turns
+  // as ∂n/∂x says along the level set (directions v ⊥ n).
+  const Eigen::Vector3d deep(0.87, 0.1, 0.09);
+  const ObstacleProjection p = project_to_box(blended, deep);
+  ASSERT_LT(p.gap, -blended.radius / 2);
+  EXPECT_EQ(p.feature, Feature::Edge);
+  const auto normal = [](const Eigen::Vector3d& y) { return project_to_box(blended, y).normal; };
+  const Eigen::Matrix3d dn = test::fd_jacobian(normal, deep);
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - p.normal * p.normal.transpose();
+  EXPECT_LE(test::relative_error(dn * P, p.dnormal_dx * P), 1e-6);
+  EXPECT_LE((p.dnormal_dx - p.dnormal_dx.transpose()).norm(), 1e-12 * p.dnormal_dx.norm());
+}
+
+TEST(BlendedBox, ContinuousAcrossItsBranches) {
+  // The exact branch meets the level-set branch at ρ₄(e) = r/2 (g = −r/2): the same g, n, ∂n/∂x
+  // on both sides. Along the diagonal of the +x/−z edge, e = (t, t), ρ₄ = 2^¼ t.
+  const double a = blended.radius / 2, t = a / std::pow(2.0, 0.25), h = 1e-9;
+  const Eigen::Vector3d B_edge(1 - blended.radius, 0.1, blended.radius);
+  const ObstacleProjection in =
+      project_to_box(blended, B_edge + (t - h) * Eigen::Vector3d(1, 0, -1));
+  const ObstacleProjection out =
+      project_to_box(blended, B_edge + (t + h) * Eigen::Vector3d(1, 0, -1));
+  EXPECT_NEAR(in.gap, -a, 1e-8);
+  EXPECT_NEAR(out.gap, -a, 1e-8);
+  EXPECT_LE((in.normal - out.normal).norm(), 1e-7);
+  EXPECT_LE((in.dnormal_dx - out.dnormal_dx).norm(), 1e-6 * out.dnormal_dx.norm());
+}
+
+TEST(BlendedBox, CurvatureIsContinuousWhereTheFaceEnds) {
+  // A point sliding under the bottom face (0.01 below it) across x = hi_x − r, where the face
+  // ends: the circular rounding's ∂n/∂x jumps there from 0 to about 1/(r + 0.01); the blended
+  // one's rises from 0 continuously (as the square of the distance past the junction).
+  const RigidBox circular{blended.lo, blended.hi, blended.radius};
+  const double junction = 1 - blended.radius;
+  for (double h : {1e-3, 1e-4}) {
+    const Eigen::Vector3d past(junction + h, 0.1, -0.01);
+    EXPECT_GT(project_to_box(circular, past).dnormal_dx.norm(), 0.9 / (blended.radius + 0.01));
+    EXPECT_LE(project_to_box(blended, past).dnormal_dx.norm(), 1e4 * h * h);
+  }
+  // Round the edge on the surface (g = 0) the largest curvature is that of the 45° point:
+  // κ = κ_S/(1 + κ_S r/2), κ_S = 3·2^¼/(√2 · r/2) the superellipse's there, ≈ 1.43/r; the
+  // circular rounding's is 1/r everywhere.
+  double largest = 0;
+  for (int i = 1; i < 200; ++i) {
+    const double angle = std::acos(0.0) * i / 200;
+    Eigen::Vector3d x = Eigen::Vector3d(junction + 0.1 * std::cos(angle), 0.1,
+                                        blended.radius - 0.1 * std::sin(angle));
+    for (int it = 0; it < 3; ++it) {  // onto the surface along the normal
+      const ObstacleProjection p = project_to_box(blended, x);
+      x -= p.gap * p.normal;
+    }
+    largest = std::max(largest, project_to_box(blended, x).dnormal_dx.norm());
+  }
+  const double a = blended.radius / 2, kappa_S = 3 * std::pow(2.0, 0.25) / (std::sqrt(2.0) * a);
+  EXPECT_NEAR(largest, kappa_S / (1 + kappa_S * a), 1e-3 * largest);
 }
 
 TEST(Obstacle, ProjectDispatches) {

@@ -200,6 +200,18 @@ TEST(RigidContactEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) {
   }
   EXPECT_EQ(features, (std::vector<Feature>{Feature::Edge, Feature::Vertex, Feature::Face}));
   EXPECT_LE(rounded.tangent_error(), 1e-6);
+  // The blended rounding (its curvature continuous): the same nodes, pressed less than r/2
+  // into the rounded edge and corner.
+  RigidScene blended = rounded;
+  blended.obstacle = RigidBox{{-1, -1, -1}, {1, 1, 1}, 0.2, true};
+  ASSERT_EQ(blended.evaluate(blended.x).elements.size(), 3u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const ObstacleProjection p = project(blended.obstacle, Eigen::Vector3d(&blended.x[3 * i]));
+    EXPECT_LT(p.gap, 0);
+    EXPECT_GT(p.gap, -0.1);
+    EXPECT_FALSE(p.dnormal_dx.isZero(0));
+  }
+  EXPECT_LE(blended.tangent_error(), 1e-6);
 }
 
 TEST(RigidContactEvaluation, RejectsDofsOfTheWrongSize) {

@@ -68,6 +68,13 @@ FrictionScene rounded_box_scene() {
           {0, 0, 0, 0, 0, 0}};
 }
 
+/// The same nodes on a box whose rounding is blended (continuous curvature).
+FrictionScene blended_box_scene() {
+  FrictionScene scene = rounded_box_scene();
+  scene.obstacle = RigidBox{{-1, -1, -1}, {1, 1, 1}, 0.2, true};
+  return scene;
+}
+
 std::set<StickSlip> states(const RigidFrictionEvaluation& e) {
   std::set<StickSlip> s;
   for (std::int8_t v : e.state) s.insert(static_cast<StickSlip>(v));
@@ -116,7 +123,8 @@ TEST(RigidFrictionEvaluation, ElementsAreNormalPlusFrictionOfTheirNode) {
 }
 
 TEST(RigidFrictionEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) {
-  for (const FrictionScene& scene : {plane_scene(), cylinder_scene(), rounded_box_scene()}) {
+  for (const FrictionScene& scene :
+       {plane_scene(), cylinder_scene(), rounded_box_scene(), blended_box_scene()}) {
     const RigidFrictionEvaluation e = scene.evaluate(scene.x);
     EXPECT_TRUE(states(e).count(StickSlip::Stick) && states(e).count(StickSlip::Slip));
     EXPECT_LE(scene.tangent_error(), 1e-6);

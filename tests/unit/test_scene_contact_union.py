@@ -12,7 +12,8 @@ COMMON = {"eps_n": 50.0, "mu": 0.2, "eps_t": 20.0, "penalty_factor": 10.0, "enfo
 KINDS = {
     "plane": {"point": [0.0, 0.0, -0.5], "normal": [0.0, 0.0, 2.0], "motion": [0.0, 0.0, 0.1],
               "rotation_axis": [1.0, 0.0, 0.0], "rotation_point": [0.5, 0.5, 0.0]},
-    "box": {"lo": [-1.0, -1.0, 1.0], "hi": [2.0, 2.0, 2.0], "motion": [0.0, 0.0, -0.1], "edge_radius": 0.25},
+    "box": {"lo": [-1.0, -1.0, 1.0], "hi": [2.0, 2.0, 2.0], "motion": [0.0, 0.0, -0.1], "edge_radius": 0.25,
+            "edge_profile": "blended"},
     "cylinder": {"point": [0.5, 0.0, 1.5], "axis": [0.0, 1.0, 0.0], "radius": 0.5, "motion": [0.1, 0.0, 0.0],
                  "rotation_axis": [0.0, 0.0, 1.0], "rotation_point": [0.5, 0.5, 1.5], "inside": True},
     "sphere": {"center": [0.5, 0.5, 1.5], "radius": 0.6, "motion": [0.0, 0.0, -0.1],
@@ -55,7 +56,8 @@ FOREIGN = [("plane", "lo", '"box"'), ("plane", "radius", '"cylinder" or "sphere"
            ("sphere", "normal", '"plane"'), ("sphere", "axis", '"cylinder"'),
            ("sphere", "point", '"plane" or "cylinder"'),
            ("cylinder", "center", '"sphere"'), ("box", "center", '"sphere"'),
-           ("box", "rotation_axis", '"plane", "cylinder" or "sphere"'), ("sphere", "edge_radius", '"box"')]
+           ("box", "rotation_axis", '"plane", "cylinder" or "sphere"'), ("sphere", "edge_radius", '"box"'),
+           ("plane", "edge_profile", '"box"')]
 
 
 @pytest.mark.parametrize("kind, key, owners", FOREIGN, ids=[f"{k}+{key}" for k, key, _ in FOREIGN])
@@ -112,6 +114,9 @@ def test_errors_inside_a_kind_name_the_entry_and_key():
         scene.load(two_blocks({"obstacle": "box", **KINDS["box"], "edge_radius": 0.6}))
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.edge_radius': expected >= 0, found -0.1"):
         scene.load(two_blocks({"obstacle": "box", **KINDS["box"], "edge_radius": -0.1}))
+    with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.edge_profile': unexpected value; "
+                                               r"permitted: 'circular', 'blended'$"):
+        scene.load(two_blocks({"obstacle": "box", **KINDS["box"], "edge_profile": "smooth"}))
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.normal': expected a non-zero vector"):
         scene.load(two_blocks({"obstacle": "plane", "normal": [0.0, 0.0, 0.0]}))
     with pytest.raises(scene.SceneError, match=r"^scene key 'contact\[0\]\.passes': expected 1 \(single pass"):

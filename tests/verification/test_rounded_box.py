@@ -60,3 +60,61 @@ def test_a_box_rounded_to_a_cylinder_is_the_cylinder(tmp_path, mu):
     # the sharp box of the same size is another obstacle: its bottom face is flat
     _, sharp = run(tmp_path, "sharp box", mu)
     assert abs(float(sharp[-1]["die_fz"]) - float(cyl[-1]["die_fz"])) > 0.05 * abs(float(cyl[-1]["die_fz"]))
+
+
+def superellipse_gap(e, a):
+    """Signed distance from e = (e1, e2) ≥ 0 in a cross-section of the blended
+    rounding to its surface, by brute force: the points within a of the
+    superellipse q = a (√cos t, √sin t), t ∈ [0, π/2] (q1⁴ + q2⁴ = a⁴), a dense
+    sample of t and then a golden-section search round the best one. Returns
+    (gap, unit normal from the surface towards e) for e outside the
+    superellipse; independent of the kernel's Lagrange equations."""
+    def point(t):
+        return a * np.sqrt(np.clip(np.array([np.cos(t), np.sin(t)]), 0.0, None))
+
+    ts = np.linspace(0.0, np.pi / 2, 20001)
+    q = a * np.sqrt(np.clip(np.stack([np.cos(ts), np.sin(ts)], axis=1), 0.0, None))
+    k = int(np.argmin(np.linalg.norm(q - e, axis=1)))
+    lo, hi = ts[max(k - 1, 0)], ts[min(k + 1, len(ts) - 1)]
+    golden = (np.sqrt(5.0) - 1) / 2
+    for _ in range(200):
+        t1, t2 = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        if np.linalg.norm(point(t1) - e) < np.linalg.norm(point(t2) - e):
+            hi = t2
+        else:
+            lo = t1
+    d = e - point(0.5 * (lo + hi))
+    return np.linalg.norm(d) - a, d / np.linalg.norm(d)
+
+
+def test_the_blended_box_presses_with_its_own_surface(tmp_path):
+    """The die of test_a_box_rounded_to_a_cylinder_is_the_cylinder with
+    edge_profile = "blended" (a superellipse of radius r/2 offset by r/2 in
+    every plane y = const), frictionless, the plain penalty (no smoothing): the
+    force it reports is ε_N Σ A_i ⟨−g_i⟩ n_i over the block's top nodes with g
+    and n from an independent brute-force distance to that profile at the
+    die's final place, so the scene's radius, profile and motion reach the
+    kernel; and it is not the circular die's force."""
+    spec = die_scene(tmp_path / "blended", "rounded box", 0.0)
+    spec["contact"][0].update({"edge_profile": "blended", "smoothing": 0.0})
+    sim = Simulation(scene.load(spec), MPI.COMM_SELF, log=quiet)
+    sim.run()
+    rows = list(csv.DictReader(open(tmp_path / "blended" / "curves.csv")))
+    assert float(rows[-1]["load_factor"]) == 1.0
+    geometry = sim.model.contacts[0].geometry
+    x = geometry.coordinates(sim.u)
+    centre = np.array([0.5 + 0.1, Z0 - 0.15])  # the die's axis at λ = 1 in (x, z)
+    force, closed = np.zeros(2), 0
+    for xi, area in zip(x, geometry.area):
+        rel = xi[[0, 2]] - centre
+        gap, n = superellipse_gap(np.abs(rel), R / 2)
+        if gap < 0:
+            force += 100.0 * area * (-gap) * np.sign(rel) * n
+            closed += 1
+    assert closed == int(rows[-1]["die_closed_nodes"]) > 3
+    assert float(rows[-1]["die_fz"]) == pytest.approx(force[1], rel=1e-8)
+    # the search finds the closest point's parameter to about √(machine ε) (the distance is flat
+    # there): its gaps are exact to round-off, its normals to about 1e-8
+    assert float(rows[-1]["die_fx"]) == pytest.approx(force[0], rel=1e-8, abs=1e-6 * abs(force[1]))
+    _, circular = run(tmp_path, "rounded box", 0.0)
+    assert abs(float(circular[-1]["die_fz"]) - force[1]) > 1e-3 * abs(force[1])

@@ -35,10 +35,13 @@ struct RigidPlane {
 /// r of the inner box [lo + r, hi − r] (a flat punch whose edges are quarter cylinders of radius
 /// r and whose corners are eighth spheres); requires 2r ≤ hi − lo (where 2r is a side, to
 /// round-off, the inner box is flat in that direction). r = 0: sharp edges.
+/// With `blended` the rounding's curvature is continuous: it rises from 0 where a flat face
+/// ends instead of jumping to 1/r (project_to_box).
 struct RigidBox {
   Eigen::Vector3d lo;
   Eigen::Vector3d hi;
   double radius = 0.0;
+  bool blended = false;
 };
 
 /// Circular cylinder of infinite length: axis through `point` along the unit vector `axis`,

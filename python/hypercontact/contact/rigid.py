@@ -26,7 +26,8 @@ def make_obstacle(kind, where, pose):
     if kind == "plane":
         return _cpp.RigidPlane(pose.point(where["point"]), pose.direction(where["normal"]))
     if kind == "box":  # the scene allows no rotation of a box: it stays axis-aligned
-        return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]), float(where.get("edge_radius", 0.0)))
+        return _cpp.RigidBox(pose.point(where["lo"]), pose.point(where["hi"]), float(where.get("edge_radius", 0.0)),
+                             where.get("edge_profile", "circular") == "blended")
     if kind == "cylinder":
         return _cpp.RigidCylinder(pose.point(where["point"]), pose.direction(where["axis"]),
                                   float(where["radius"]), bool(where.get("inside", False)))
@@ -94,7 +95,7 @@ class RigidObstacle:
         (:func:`rigid_integration`)."""
         self.kind = spec["obstacle"]
         self.rest = {k: spec[k] for k in ("point", "normal", "lo", "hi", "axis", "radius", "center", "inside",
-                                          "edge_radius")
+                                          "edge_radius", "edge_profile")
                      if k in spec}
         self.axis, self.pivot = rotation_pivot(spec)
         self.comm = V.mesh.comm

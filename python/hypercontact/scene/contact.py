@@ -115,6 +115,10 @@ class BoxContact(RigidContact):
     hi: vector(COORDINATES) = [1.0, 1.0, 1.0]
     #: its edges and corners rounded with this radius (0: sharp, the paper's punch)
     edge_radius: number(NON_NEGATIVE, LENGTH) = 0.0
+    #: the rounding's profile: "circular" (quarter cylinders and eighth spheres; the curvature
+    #: jumps from 0 to 1/edge_radius where a face ends) or "blended" (superellipses offset by
+    #: edge_radius/2; the curvature rises continuously from 0, at most about 1.43/edge_radius)
+    edge_profile: Literal["circular", "blended"] = "circular"
 
     @root_validator(skip_on_failure=True)
     def sides_that_stay_positive(cls, values):
