@@ -149,6 +149,22 @@ TEST(RigidFrictionEvaluation, TangentIsTheDerivativeOfTheResidualInEveryBranch) 
   }
 }
 
+TEST(RigidFrictionEvaluation, MultipliersOnCurvedObstaclesHaveExactTangents) {
+  // The augmented Lagrangian's multipliers on obstacles whose normal turns with the node:
+  // stick and slip on the cylinder and on the circular and blended box roundings, with the
+  // multiplier carrying part (or, open by the gap, all) of the pressure.
+  for (FrictionScene scene : {cylinder_scene(), rounded_box_scene(), blended_box_scene()}) {
+    scene.multipliers.assign(scene.area.size(), 0.0);
+    for (std::size_t i = 0; i < scene.area.size(); ++i) scene.multipliers[i] = 20.0 + 15.0 * i;
+    const RigidFrictionEvaluation e = scene.evaluate(scene.x);
+    EXPECT_TRUE(states(e).count(StickSlip::Stick) && states(e).count(StickSlip::Slip));
+    EXPECT_LE(scene.tangent_error(), 1e-6);
+    FrictionScene smoothed = scene;
+    smoothed.smoothing = 0.05;
+    EXPECT_LE(smoothed.tangent_error(), 1e-6);
+  }
+}
+
 TEST(RigidFrictionEvaluation, RejectsAHistoryOfTheWrongSize) {
   FrictionScene scene = plane_scene();
   scene.t_old.pop_back();
