@@ -139,7 +139,7 @@ class ResultsWriter:
 
     def write_step(self, load_factor, iterations, norms, timers, settled_from=0, update_norms=(),
                    active_set_changes=0, stick_slip_changes=0, augmentations=0, linear_iterations=None, phase=0,
-                   residual_reference=None):
+                   residual_reference=None, negative_eigenvalues=None):
         # The fields first: a non-finite one stops here, before anything of this step is recorded.
         step = len(self.steps) + 1
         # fields.xdmf's time: the load factor, or with phases the accumulated τ (λ restarts in each phase)
@@ -171,7 +171,8 @@ class ResultsWriter:
         self.steps.append({**row, "residual_norms": norms, "residual_reference": reference,
                            "active_set_settled_at": settled_from,
                            "active_set_changes": active_set_changes, "update_norms": list(update_norms),
-                           "augmentations": augmentations})
+                           "augmentations": augmentations,
+                           **({"negative_eigenvalues": negative_eigenvalues} if negative_eigenvalues is not None else {})})
         if self.rank0:
             self._csv.writerow([row.get(k, "") for k in self.columns])  # a driver may give no Krylov count
             self._csv_file.flush()

@@ -18,6 +18,16 @@ class StepFailure(RuntimeError):
     """A load step did not converge after the allowed cut-backs."""
 
 
+def unstable(negative):
+    """The stop message's diagnosis of a last converged state whose tangent had
+    ``negative`` negative eigenvalues (None: not known)."""
+    if not negative:
+        return ""
+    return (f"; the last converged step's tangent had {negative} negative eigenvalue{'s' * (negative != 1)}: that "
+            "equilibrium is unstable, past a bifurcation or a limit point of the path, which load control cannot "
+            "follow (negative_eigenvalues per step in summary.json)")
+
+
 class LoadStepping:
     """The load-control driver of a model. ``fail_attempt(step, lam, dlam,
     attempt) -> bool``: see Simulation."""
@@ -29,6 +39,9 @@ class LoadStepping:
         self.augmentations = 0
         self.linear_its = 0  # Krylov iterations of the last attempt, all its Newton solves
         self.reference = 0.0  # the last attempt's reference |R_0| (attempt): 0 unless it was predicted
+        # negative eigenvalues of the last attempt's last factorised tangent, and of the last
+        # converged step's (NewtonSolver.negative_eigenvalues; None where unknown)
+        self.negative_eigenvalues = self.converged_negative_eigenvalues = None
 
     def update_pairing(self, fresh):
         """The model's pairing (Model.update_pairing); a new matrix goes to the solver."""
@@ -75,6 +88,7 @@ class LoadStepping:
         if self.model.comm.allreduce(forced, op=MPI.LOR) and ok:
             ok, reason = False, FORCED_FAILURE
         self.linear_its = sum(s["linear_iterations"] for s in self.newton.solves)
+        self.negative_eigenvalues = self.newton.negative_eigenvalues()
         return ok, its, norms, reason
 
     def failure_story(self, step, lam, dlam, attempt, reason, norms):
@@ -91,6 +105,8 @@ class LoadStepping:
         story["largest_residuals"] = largest_residuals(self.model, self.newton.snes.getFunction()[0])
         if self.newton.inverted is not None:
             story["inverted_element"] = self.newton.inverted
+        if self.negative_eigenvalues is not None:
+            story["negative_eigenvalues"] = self.negative_eigenvalues
         return story
 
     def run(self, observer, out_dir, state=None, arrays=None):
@@ -120,6 +136,7 @@ class LoadStepping:
                           if u_step is not None and stepper.cuts == 0 else None)
             ok, its, norms, reason = self.attempt(number, lam, dlam, stepper.cuts, prediction)
             if ok:
+                self.converged_negative_eigenvalues = self.negative_eigenvalues
                 stepper.converged(its)
                 model.problem.prepare_contacts()  # the converged state: commit and results read it
                 for c in model.contacts:
@@ -143,6 +160,7 @@ class LoadStepping:
             self._log_failure(story, lam, dlam, its, reason, stop)
             if stop:
                 where = f"; {describe_inverted(story['inverted_element'])}" if "inverted_element" in story else ""
+                where += unstable(self.converged_negative_eigenvalues)
                 cuts = stepper.cuts
                 raise StepFailure(
                     f"load step from λ = {lam:.6g} did not converge after {cuts} cut-back{'s' * (cuts != 1)} "

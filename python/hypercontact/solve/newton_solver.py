@@ -5,6 +5,7 @@ import time
 
 import numpy as np
 from mpi4py import MPI
+from petsc4py import PETSc
 
 from .. import _dolfinx as dfx
 from ..model.inversion import INVERTED_ELEMENT
@@ -164,3 +165,26 @@ class NewtonSolver:
 
     def iterations(self):
         return self.snes.getIterationNumber()
+
+    def negative_eigenvalues(self):
+        """How many eigenvalues of the last tangent this solver factorised are
+        negative, where that is known: with a symmetric tangent factorised by
+        MUMPS as LDLᵀ it is the number of negative pivots (Sylvester's law of
+        inertia), free once factorised. None with LU (a non-symmetric tangent),
+        an iterative solver, or before the first factorisation. In a converged
+        step that tangent is the one at its last Newton iterate but one. A
+        stable equilibrium has none (the tangent of a minimum of the energy is
+        positive definite); one or more mark a state past a bifurcation or a
+        limit point of the path."""
+        pc = self.snes.getKSP().getPC()
+        if pc.getType() != "cholesky" or pc.getFactorSolverType() != "mumps":
+            return None
+        try:
+            factor = pc.getFactorMatrix()
+        except PETSc.Error:
+            return None
+        # INFOG(29), the entries in the factors, is 0 until a numerical factorisation (< 0: millions);
+        # INFOG(1) < 0: the last one failed
+        if factor.getMumpsInfog(29) == 0 or factor.getMumpsInfog(1) < 0:
+            return None
+        return int(factor.getMumpsInfog(12))

@@ -38,7 +38,8 @@ class Observers:
             row = self.writer.write_step(lam, its, norms, self.run.split(), history.last_active_set_change(),
                                          history.update_norms, changes, flips, self.run.driver.augmentations,
                                          self.run.driver.linear_its, phase=self.model.phase,
-                                         residual_reference=self.run.driver.reference)
+                                         residual_reference=self.run.driver.reference,
+                                         negative_eigenvalues=self.run.driver.negative_eigenvalues)
         for n, what in ((changes, "contact active set"), (flips, "stick/slip status")):
             if n >= self.steps["chatter_warning"]:
                 self.log(f"   the {what} changed in {n} Newton iterations of this step "
