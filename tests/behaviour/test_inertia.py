@@ -68,7 +68,8 @@ def test_an_unstable_equilibrium_is_diagnosed(tmp_path):
         "mesh.n=8", "mesh.m=2", "mesh.grading=[2.0, 2.0, 2.0]", "mesh.focus=[20.0, 20.0, 10.0]",
         "contact.0.eps_n=0", "contact.1.eps_n=0", "contact.0.edge_radius=1.0", "contact.0.edge_profile=blended",
         "output.xdmf=false", f"output.dir={tmp_path}"])
-    sim = Simulation(sc, MPI.COMM_SELF, log=quiet)
+    lines = []
+    sim = Simulation(sc, MPI.COMM_SELF, log=lambda *a, **k: lines.append(" ".join(map(str, a))))
     with pytest.raises(StepFailure, match=r"the last converged step's tangent had \d+ negative eigenvalues?: that "
                                           r"equilibrium is unstable"):
         sim.run()
@@ -76,3 +77,7 @@ def test_an_unstable_equilibrium_is_diagnosed(tmp_path):
     counts = [s["negative_eigenvalues"] for s in summary["steps"]]
     assert counts[0] == 0 and max(counts) >= 1 and counts[-1] >= 1, counts
     assert all("negative_eigenvalues" in f for f in summary["failed_attempts"])
+    # the console says so when it happens, once per change of the count
+    warnings = [line for line in lines if "negative eigenvalue" in line and line.startswith("   the tangent has")]
+    changes = sum(1 for a, b in zip([0] + counts, counts) if a != b and b > 0)
+    assert len(warnings) == changes >= 1

@@ -22,6 +22,7 @@ class Observers:
     def __init__(self, run, writer):
         self.run, self.writer = run, writer
         self.model, self.log = run.model, run.log
+        self.negative_eigenvalues = 0  # the last count a console line reported (converged)
 
     @property
     def steps(self):
@@ -49,6 +50,12 @@ class Observers:
         where = f"{self.run.phase_label()}λ = {lam:.4f}"
         self.log(f"step {row['step']:3d}  {where}  Newton {its:2d}{krylov}  "
                  f"|R| = {norms[-1]:.2e}  ({reason}){self.run.eta(self.model.path.progress(self.model.phase, lam))}")
+        negative = self.run.driver.negative_eigenvalues
+        if negative is not None and negative != self.negative_eigenvalues:  # each change once
+            self.log(f"   the tangent has {negative} negative eigenvalue{'s' * (negative != 1)}: this equilibrium is "
+                     "unstable, past a bifurcation or a limit point" if negative else
+                     "   the tangent is positive definite again: a stable equilibrium")
+            self.negative_eigenvalues = negative
         self.run.save_checkpoint(self.writer, controller, **arrays)
 
     def converged_path(self, lam, its, norms, reached, target, controller, du_prev):
