@@ -61,12 +61,12 @@ double quartic_root(double e, double lambda) {
   return std::max(y, 0.0);
 }
 
-/// The closest point y of the surface Σ yᵢ⁴ = a⁴ to e ≥ 0 with Σ eᵢ⁴ > a⁴, and its multiplier λ
-/// (yᵢ + 4λyᵢ³ = eᵢ). φ(λ) = Σ yᵢ(λ)⁴ − a⁴ decreases from φ(0) > 0: Newton on λ, kept inside
+/// The closest point y of the surface Σ yᵢ⁴ = a⁴ to e ≥ 0 with ρ₄ = (Σ eᵢ⁴)^¼ > a (computed
+/// by the caller without over- or underflow), and its multiplier λ (yᵢ + 4λyᵢ³ = eᵢ). φ(λ) = Σ yᵢ(λ)⁴ − a⁴ decreases from φ(0) > 0: Newton on λ, kept inside
 /// a bracket that every step narrows, bisecting when Newton leaves it.
-Eigen::Vector3d quartic_closest_point(const Eigen::Vector3d& e, double a, double& lambda) {
+Eigen::Vector3d quartic_closest_point(const Eigen::Vector3d& e, double rho4, double a,
+                                      double& lambda) {
   const double a4 = a * a * a * a;
-  const double rho4 = std::sqrt(std::sqrt(e.array().pow(4).sum()));
   const Eigen::Vector3d radial = e * (a / rho4);
   lambda = (rho4 - a) / (4 * radial.array().pow(3).matrix().norm());  // a first guess
   double lo = 0, hi = std::numeric_limits<double>::infinity();
@@ -108,7 +108,7 @@ ObstacleProjection project_blended(const Eigen::Vector3d& d, const Eigen::Vector
     return {rho4 - r, s.cwiseProduct(nhat), s.asDiagonal() * dn_de * s.asDiagonal(), feature};
   }
   double lambda = 0;
-  const Eigen::Vector3d y = quartic_closest_point(e, a, lambda);
+  const Eigen::Vector3d y = quartic_closest_point(e, rho4, a, lambda);
   const Eigen::Vector3d b = 4 * y.array().pow(3);  // ∇(Σyᵢ⁴)
   const Eigen::Vector3d nhat = b / b.norm();
   // ∂y/∂e = A⁻¹ − A⁻¹b bᵀA⁻¹/(bᵀA⁻¹b), A = diag(1 + 12λyᵢ²): differentiating yᵢ + 4λyᵢ³ = eᵢ
