@@ -55,6 +55,16 @@ class Model:
                                             for c in self.contacts))
 
     @property
+    def pressure_unknowns(self):
+        """The global number of unknowns that are not displacements: the mixed formulation's
+        pressure, 0 otherwise. Its tangent is a saddle point: each pressure unknown gives one
+        negative eigenvalue at a stable equilibrium (Sylvester's law on the block factorisation
+        with the negative definite Schur complement −C/K − BᵀA⁻¹B)."""
+        if self._u_dofs is None:
+            return 0
+        return dfx.num_global_dofs(self.w.function_space) - dfx.num_global_dofs(self.V)
+
+    @property
     def symmetric_tangent(self):
         """Whether the tangent is symmetric: the second derivative of an
         energy — hyperelastic volume (every formulation), dead loads, Dirichlet

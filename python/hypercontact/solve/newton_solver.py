@@ -175,7 +175,9 @@ class NewtonSolver:
         step that tangent is the one at its last Newton iterate but one. A
         stable equilibrium has none (the tangent of a minimum of the energy is
         positive definite); one or more mark a state past a bifurcation or a
-        limit point of the path."""
+        limit point of the path. In the mixed formulation the count leaves out
+        the one negative eigenvalue each pressure unknown has at a stable
+        state (Model.pressure_unknowns): what is left are the unstable modes."""
         pc = self.snes.getKSP().getPC()
         if pc.getType() != "cholesky" or pc.getFactorSolverType() != "mumps":
             return None
@@ -187,4 +189,4 @@ class NewtonSolver:
         # INFOG(1) < 0: the last one failed
         if factor.getMumpsInfog(29) == 0 or factor.getMumpsInfog(1) < 0:
             return None
-        return int(factor.getMumpsInfog(12))
+        return int(factor.getMumpsInfog(12)) - self.model.pressure_unknowns
