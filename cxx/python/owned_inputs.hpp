@@ -22,6 +22,7 @@ struct OwnedRigidContactInput {
   RealArray multipliers;
   double smoothing;
   RealArray point_weights;
+  int points_per_facet = 0;
 
   RigidContactInput view() const {
     check_shape(x, "x", {any, 3});
@@ -34,9 +35,12 @@ struct OwnedRigidContactInput {
     } else if (point_weights.size() > 0) {
       check_shape(point_weights, "point_weights", {x.shape(0), any});
     }
-    check_shape(dofs, "dofs", {x.shape(0), 3 * k});
-    return {obstacle,  as_span(x),           as_span(area), as_span(dofs),
-            eps_n,     as_span(multipliers), smoothing,     as_span(point_weights)};
+    const py::ssize_t constraints =
+        points_per_facet > 0 ? x.shape(0) / points_per_facet : x.shape(0);
+    check_shape(dofs, "dofs", {constraints, 3 * k});
+    return {obstacle,        as_span(x),           as_span(area), as_span(dofs),
+            eps_n,           as_span(multipliers), smoothing,     as_span(point_weights),
+            points_per_facet};
   }
 };
 

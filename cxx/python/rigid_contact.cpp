@@ -17,16 +17,20 @@ void declare_rigid_contact(py::module_& m) {
                  "multipliers (n,) augmented-Lagrangian pressures >= 0, or empty (penalty);\n"
                  "smoothing: the band delta >= 0 of the smoothed law (0: the Macaulay bracket);\n"
                  "point_weights (n, k): slave points x_p = sum_a M_a x_a of k nodes each (Gauss\n"
-                 "points; then dofs is (n, 3k), the nodes' dofs in order), or empty: nodes.")
+                 "points; then dofs is (n, 3k), the nodes' dofs in order), or empty: nodes;\n"
+                 "points_per_facet Q > 0: the points are the Q Gauss points of n / Q facets and\n"
+                 "each facet carries the pressure of its mean gap (dofs (n / Q, 3k), multipliers\n"
+                 "(n / Q,)); 0: each point its own.")
       .def(py::init([](Obstacle obstacle, RealArray x, RealArray area, IndexArray dofs,
                        double eps_n, RealArray multipliers, double smoothing,
-                       RealArray point_weights) {
-             return In{std::move(obstacle), x, area, dofs, eps_n, multipliers, smoothing,
-                       point_weights};
+                       RealArray point_weights, int points_per_facet) {
+             return In{
+                 std::move(obstacle), x, area, dofs, eps_n, multipliers, smoothing, point_weights,
+                 points_per_facet};
            }),
            py::kw_only(), py::arg("obstacle"), py::arg("x"), py::arg("area"), py::arg("dofs"),
            py::arg("eps_n"), py::arg("multipliers") = RealArray(0), py::arg("smoothing") = 0.0,
-           py::arg("point_weights") = RealArray(0))
+           py::arg("point_weights") = RealArray(0), py::arg("points_per_facet") = 0)
       .def_readwrite("obstacle", &In::obstacle)
       .def_readwrite("x", &In::x)
       .def_readwrite("area", &In::area)
@@ -34,7 +38,8 @@ void declare_rigid_contact(py::module_& m) {
       .def_readwrite("eps_n", &In::eps_n)
       .def_readwrite("multipliers", &In::multipliers)
       .def_readwrite("smoothing", &In::smoothing)
-      .def_readwrite("point_weights", &In::point_weights);
+      .def_readwrite("point_weights", &In::point_weights)
+      .def_readwrite("points_per_facet", &In::points_per_facet);
 
   py::class_<RigidContactState>(m, "RigidContactState", "Per-node gap and pressure, total force")
       .def_property_readonly("gap", [](const RigidContactState& s) { return to_numpy(s.gap); })

@@ -62,8 +62,9 @@ double quartic_root(double e, double lambda) {
 }
 
 /// The closest point y of the surface Σ yᵢ⁴ = a⁴ to e ≥ 0 with ρ₄ = (Σ eᵢ⁴)^¼ > a (computed
-/// by the caller without over- or underflow), and its multiplier λ (yᵢ + 4λyᵢ³ = eᵢ). φ(λ) = Σ yᵢ(λ)⁴ − a⁴ decreases from φ(0) > 0: Newton on λ, kept inside
-/// a bracket that every step narrows, bisecting when Newton leaves it.
+/// by the caller without over- or underflow), and its multiplier λ (yᵢ + 4λyᵢ³ = eᵢ). φ(λ) = Σ
+/// yᵢ(λ)⁴ − a⁴ decreases from φ(0) > 0: Newton on λ, kept inside a bracket that every step narrows,
+/// bisecting when Newton leaves it.
 Eigen::Vector3d quartic_closest_point(const Eigen::Vector3d& e, double rho4, double a,
                                       double& lambda) {
   const double a4 = a * a * a * a;

@@ -35,6 +35,10 @@ RigidFrictionEvaluation empty_evaluation(std::size_t n) {
 RigidFrictionEvaluation evaluate_rigid_friction(const RigidFrictionInput& in) {
   constexpr const char* who = "evaluate_rigid_friction";
   const RigidContactInput& c = in.contact;
+  if (c.points_per_facet != 0)
+    throw std::invalid_argument(std::string(who) +
+                                ": facet integration (points_per_facet > 0) is frictionless: a "
+                                "facet's mean gap has no slip of its own");
   const int k = detail::check_rigid_input(c, who);
   check_history(in, who);
   const std::size_t n = c.area.size();

@@ -3,7 +3,8 @@ formulation: the contact patch test — the block between two frictionless
 rigid planes is in a homogeneous state, which every one of these spaces holds
 exactly, so the computed forces, stretches and pressures must equal the
 closed form of tests/reference/homogeneous.py (independent of the code)
-whenever the contact integration is consistent."""
+whenever the contact integration is consistent (nodal weights ∫N_i dA, Gauss points, or a
+pressure per facet)."""
 import numpy as np
 import pytest
 from conftest import quiet
@@ -28,6 +29,12 @@ EXACT = [
     ("tetrahedra", 2, "mixed", "gauss"),
     ("tetrahedra", 2, "displacement", "auto"),  # "auto" picks Gauss points on 6-node triangles
     ("hexahedra", 2, "displacement", "auto"),
+    # a pressure per facet gives every node its consistent load ∫N_a p dA
+    ("tetrahedra", 2, "displacement", "facet"),
+    ("tetrahedra", 2, "mixed", "facet"),
+    ("hexahedra", 2, "displacement", "facet"),
+    ("hexahedra", 1, "displacement", "facet"),
+    ("tetrahedra", 1, "displacement", "facet"),
 ]
 
 

@@ -49,6 +49,16 @@ std::vector<RigidContactNode> evaluate_rigid_contact(const Obstacle& obstacle,
 /// point_weights empty) or a combination x_p = Σ_a M_a x_a of k nodes (a Gauss point of a slave
 /// facet: point_weights holds M_a, n × k), whose element spreads r and K over the k nodes:
 /// R_a = M_a r, K_ab = M_a M_b K.
+///
+/// With points_per_facet = Q > 0 the constraint is a facet's, not a point's ("facet"
+/// integration): the n points are the Q Gauss points of n / Q slave facets, facet after facet,
+/// each facet carries one pressure, that of its mean gap ḡ = Σ_q w_q g_q / A (A = Σ_q w_q), and
+/// dofs and multipliers are per facet (n / Q × k × 3 and n / Q). Then
+///   p = p_N(ḡ) (normal_pressure.hpp),  R_a = −p Σ_q w_q M_qa n_q,
+///   K_ab = −(dp_N/dḡ / A) B_a ⊗ B_b − p Σ_q w_q M_qa M_qb ∂n_q/∂x,  B_a = Σ_q w_q M_qa n_q,
+/// the gradient and Hessian of A Q(ḡ) ε_N (a piecewise-constant pressure: a uniform pressure
+/// gives each node its consistent load ∫ N_a p dA, and the facets, fewer than the nodes of a
+/// quadratic surface, do not over-constrain it).
 struct RigidContactInput {
   Obstacle obstacle;
   std::span<const double> x;                 ///< n × 3 current point coordinates, row-major
@@ -58,11 +68,12 @@ struct RigidContactInput {
   std::span<const double> multipliers = {};  ///< n augmented-Lagrangian λ_i ≥ 0, or empty
   double smoothing = 0.0;  ///< band δ ≥ 0 of the smoothed law (penetration.hpp)
   std::span<const double> point_weights = {};  ///< n × k node weights M_a, or empty (k = 1)
+  int points_per_facet = 0;  ///< Q > 0: one constraint per facet of Q points (see above)
 };
 
-/// Per-node and total output of an evaluation.
+/// Per-node and total output of an evaluation (per facet with points_per_facet > 0).
 struct RigidContactState {
-  std::vector<double> gap;       ///< g_i per slave node
+  std::vector<double> gap;       ///< g_i per slave node (a facet's mean gap ḡ)
   std::vector<double> pressure;  ///< p_N,i = ε_N ⟨−g_i⟩ (augmented: ⟨λ_i − ε_N g_i⟩)
   Eigen::Vector3d force;         ///< normal force of the obstacle on the body, −Σ_i r_i
   std::int32_t num_closed;       ///< number of active nodes (g_i ≤ 0 without λ and δ)
@@ -74,8 +85,9 @@ struct RigidContactEvaluation : RigidContactState {
   ContactElements elements;
 };
 
-/// rigid_contact_node of every slave node, once. Throws as the vector form above, and
-/// std::invalid_argument unless dofs has 3 entries per node.
+/// rigid_contact_node of every slave node, once (or the facets' constraints, points_per_facet
+/// > 0). Throws as the vector form above, and std::invalid_argument unless dofs has 3 entries
+/// per node (per node of each facet), or if Q does not divide n or a facet's area is not > 0.
 RigidContactEvaluation evaluate_rigid_contact(const RigidContactInput& in);
 
 namespace detail {

@@ -54,10 +54,11 @@ class Evaluation:
 
 
 def _rigid(geometry, law, multipliers, eps_n, smoothing, x):
-    weights = geometry.point_weights
-    contact = _cpp.RigidContactInput(obstacle=geometry.obstacle, x=x, area=geometry.area, dofs=geometry.dofs,
-                                     eps_n=eps_n, multipliers=multipliers, smoothing=smoothing,
-                                     point_weights=weights if weights is not None else np.zeros((0, 0)))
+    weights = geometry.kernel_weights  # facet integration: x, kernel_area and the weights are the Gauss points'
+    contact = _cpp.RigidContactInput(obstacle=geometry.obstacle, x=x, area=geometry.kernel_area,
+                                     dofs=geometry.dofs, eps_n=eps_n, multipliers=multipliers, smoothing=smoothing,
+                                     point_weights=weights if weights is not None else np.zeros((0, 0)),
+                                     points_per_facet=geometry.points_per_facet)
     if not law.frictional:
         return Evaluation(_cpp.evaluate_rigid_contact(contact), ("gap", "pressure"), x)
     h = law.history

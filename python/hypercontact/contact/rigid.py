@@ -101,6 +101,7 @@ class RigidObstacle:
         self.comm = V.mesh.comm
         gid = dfx.global_node_indices(V).astype(np.int64)
         X_nodes = dfx.node_coordinates(V)
+        self._X_nodes, self._u_dofs = X_nodes, u_dofs
         self.integration = rigid_integration(spec.get("integration", "auto"), V)
         if self.integration == "nodal":
             area = nodal_areas(V, facet_tags, tag)
@@ -109,6 +110,18 @@ class RigidObstacle:
             self.point_nodes, self.point_weights = self.nodes[:, None], None
             self.X = np.ascontiguousarray(X_nodes[self.nodes])
             self.ids = gid[self.nodes]
+        elif self.integration == "facet":
+            # a constraint per facet on its mean gap: the kernel sees the Gauss points (kernel_*), the
+            # results one point per facet at its centroid with its area
+            facets = (surface_facet_nodes if dfx.degree_of(V) == 2 else surface_facets)(V, facet_tags, tag)
+            gauss_nodes, self.kernel_weights, self.kernel_area = facet_gauss_points(facets, X_nodes)
+            self.points_per_facet = len(facet_rule(facets.shape[1])[1])
+            self._gauss_nodes = gauss_nodes
+            self.point_nodes, self.point_weights = facets.astype(np.int32), None
+            self.area = self.kernel_area.reshape(len(facets), self.points_per_facet).sum(axis=1)
+            self.nodes = None
+            self.X = self._centroids(self._gauss_points(X_nodes, None))
+            self.ids = 7919 * gid[facets[:, 0]] + 31 * gid[facets[:, 1]]
         else:
             facets = (surface_facet_nodes if dfx.degree_of(V) == 2 else surface_facets)(V, facet_tags, tag)
             self.point_nodes, self.point_weights, self.area = facet_gauss_points(facets, X_nodes)
@@ -117,6 +130,8 @@ class RigidObstacle:
             q = np.tile(np.arange(len(facet_rule(facets.shape[1])[1])), len(facets))
             # an id per point for the active-set checksums: its facet's first two nodes and its index
             self.ids = 7919 * gid[self.point_nodes[:, 0]] + 31 * gid[self.point_nodes[:, 1]] + q
+        if self.integration != "facet":  # each point its own constraint
+            self.points_per_facet, self.kernel_weights, self.kernel_area = 0, self.point_weights, self.area
         self.point_area = self.area
         index = 3 * self.point_nodes[:, :, None].astype(np.int64) + np.arange(3)  # (n, k, 3): V's dofs
         if u_dofs is not None:
@@ -143,10 +158,30 @@ class RigidObstacle:
         """How far the obstacle has moved from its place in the scene: |t|."""
         return float(np.linalg.norm(self.pose.t))
 
+    def _gauss_points(self, X_nodes, values):
+        """Facet integration: the Gauss points at node coordinates X_nodes plus the values'
+        displacements (None: none)."""
+        x = np.einsum("pa,pak->pk", self.kernel_weights, X_nodes[self._gauss_nodes])
+        if values is not None:
+            index = 3 * self._gauss_nodes[:, :, None] + np.arange(3)
+            if values.size != self._num_v_dofs:
+                index = self._u_dofs[index]
+            x += np.einsum("pa,pak->pk", self.kernel_weights, values[index])
+        return np.ascontiguousarray(x)
+
+    def _centroids(self, gauss):
+        """Facet integration: each facet's area-weighted mean of its Gauss points."""
+        Q = self.points_per_facet
+        w = self.kernel_area.reshape(len(self.area), Q)
+        return np.ascontiguousarray(np.einsum("fq,fqk->fk", w, gauss.reshape(len(self.area), Q, 3))
+                                    / self.area[:, None])
+
     def coordinates(self, u):
-        """Current coordinates of this rank's slave nodes; u the displacement or
-        (mixed formulation) the unknown it is part of."""
+        """Current coordinates of this rank's slave nodes (the Gauss points, facet integration);
+        u the displacement or (mixed formulation) the unknown it is part of."""
         values = u.x.array
+        if self.integration == "facet":
+            return self._gauss_points(self._X_nodes, values)
         if self.point_weights is None:
             if values.size == self._num_v_dofs:
                 return np.ascontiguousarray(self.X + values.reshape(-1, 3)[self.nodes])
@@ -156,7 +191,10 @@ class RigidObstacle:
         return np.ascontiguousarray(self.X + np.einsum("pa,pak->pk", self.point_weights, values[index]))
 
     def point_coordinates(self, u):
-        """(reference, current) coordinates of this rank's slave points."""
+        """(reference, current) coordinates of this rank's slave points (the facets' centroids,
+        facet integration)."""
+        if self.integration == "facet":
+            return self.X, self._centroids(self.coordinates(u))
         return self.X, self.coordinates(u)
 
     def field_nodes(self):

@@ -52,6 +52,8 @@ class Model:
                                         dfx.num_global_dofs(self.w.function_space), self.symmetric_tangent,
                                         self.path, dfx.element_description(self.V),
                                         sum(getattr(c.geometry, "integration", None) == "gauss"
+                                            for c in self.contacts),
+                                        sum(getattr(c.geometry, "integration", None) == "facet"
                                             for c in self.contacts))
 
     @property

@@ -18,11 +18,12 @@ def _mu(scene, path, j):
 
 
 def describe_effects(scene, material, settings, num_moving, num_unknowns, symmetric=False, path=None,
-                     elements=None, gauss_rigid=0):
+                     elements=None, gauss_rigid=0, facet_rigid=0):
     """[material, elements (unless trilinear hexahedra), contacts, automatic
     penalties, loads, control, linear solver]; ``path``: the scene's LoadPath
     (with phases: μ along them, and the phases in words); ``elements``: e.g.
-    "10-node tetrahedra"; ``gauss_rigid``: rigid contacts on Gauss points."""
+    "10-node tetrahedra"; ``gauss_rigid``, ``facet_rigid``: rigid contacts on Gauss points, with
+    a pressure per facet."""
     contacts = scene["contact"]
     n_rigid = sum(c["obstacle"] != "surface" for c in contacts)
     frictional = [j for j in range(len(contacts)) if (path.max_mu(j) if path is not None else contacts[j]["mu"]) > 0]
@@ -30,6 +31,8 @@ def describe_effects(scene, material, settings, num_moving, num_unknowns, symmet
     friction = f"Coulomb friction μ = {', '.join(mus)}" if mus else "frictionless"
     if gauss_rigid:
         friction += f", {'Gauss-point integration' if gauss_rigid == n_rigid else f'{gauss_rigid} on Gauss points'}"
+    if facet_rigid:
+        friction += f", {'a pressure per facet' if facet_rigid == n_rigid else f'{facet_rigid} with a pressure per facet'}"
     effects = [material] + ([elements] if elements not in (None, "8-node hexahedra") else [])
     effects.append(f"{n_rigid} rigid contact{'s' if n_rigid != 1 else ''} ({friction})" if n_rigid
                    else "no rigid contact" if contacts else "no contact")

@@ -66,9 +66,19 @@ class RigidContact(Contact):
     motion: vector(COORDINATES) = [0.0, 0.0, 0.0]
     #: "auto": nodal, except on 6-node triangles (quadratic tetrahedra), whose nodal weights do not
     #: pass the patch test (docs/method.md §3.4): Gauss points there
-    integration: string(one_of(("auto", "nodal", "gauss"), '"auto", "nodal" (the paper: a point per slave '
-                                                           'node) or "gauss" (the Gauss points of the slave '
-                                                           'facets)')) = "auto"
+    #: "facet": one pressure per slave facet, that of the facet's mean gap over its Gauss points
+    #: (docs/method.md §3.4), frictionless
+    integration: string(one_of(("auto", "nodal", "gauss", "facet"),
+                               '"auto", "nodal" (the paper: a point per slave node), "gauss" (the Gauss '
+                               'points of the slave facets) or "facet" (a pressure per slave facet, '
+                               'frictionless)')) = "auto"
+
+    @root_validator(skip_on_failure=True)
+    def facet_integration_is_frictionless(cls, values):
+        if values.get("integration") == "facet" and values.get("mu", 0.0) > 0:
+            raise Invalid('integration = "facet" is frictionless (a facet\'s mean gap has no slip of its own): '
+                          'mu = 0, or integration = "nodal" or "gauss" for friction', "integration")
+        return values
 
 
 def rotation_pivot(entry):
