@@ -101,7 +101,6 @@ class RigidObstacle:
         self.comm = V.mesh.comm
         gid = dfx.global_node_indices(V).astype(np.int64)
         X_nodes = dfx.node_coordinates(V)
-        self._X_nodes, self._u_dofs = X_nodes, u_dofs
         self.integration = rigid_integration(spec.get("integration", "auto"), V)
         if self.integration == "nodal":
             area = nodal_areas(V, facet_tags, tag)
@@ -116,11 +115,14 @@ class RigidObstacle:
             facets = (surface_facet_nodes if dfx.degree_of(V) == 2 else surface_facets)(V, facet_tags, tag)
             gauss_nodes, self.kernel_weights, self.kernel_area = facet_gauss_points(facets, X_nodes)
             self.points_per_facet = len(facet_rule(facets.shape[1])[1])
-            self._gauss_nodes = gauss_nodes
             self.point_nodes, self.point_weights = facets.astype(np.int32), None
             self.area = self.kernel_area.reshape(len(facets), self.points_per_facet).sum(axis=1)
             self.nodes = None
-            self.X = self._centroids(self._gauss_points(X_nodes, None))
+            # the Gauss points' reference coordinates and their nodes' dofs in V and in the unknown
+            self._gauss_X = np.einsum("pa,pak->pk", self.kernel_weights, X_nodes[gauss_nodes])
+            self._gauss_v_dofs = 3 * gauss_nodes[:, :, None] + np.arange(3)
+            self._gauss_dofs = self._gauss_v_dofs if u_dofs is None else u_dofs[self._gauss_v_dofs]
+            self.X = self._centroids(self._gauss_X)
             self.ids = 7919 * gid[facets[:, 0]] + 31 * gid[facets[:, 1]]
         else:
             facets = (surface_facet_nodes if dfx.degree_of(V) == 2 else surface_facets)(V, facet_tags, tag)
@@ -158,17 +160,6 @@ class RigidObstacle:
         """How far the obstacle has moved from its place in the scene: |t|."""
         return float(np.linalg.norm(self.pose.t))
 
-    def _gauss_points(self, X_nodes, values):
-        """Facet integration: the Gauss points at node coordinates X_nodes plus the values'
-        displacements (None: none)."""
-        x = np.einsum("pa,pak->pk", self.kernel_weights, X_nodes[self._gauss_nodes])
-        if values is not None:
-            index = 3 * self._gauss_nodes[:, :, None] + np.arange(3)
-            if values.size != self._num_v_dofs:
-                index = self._u_dofs[index]
-            x += np.einsum("pa,pak->pk", self.kernel_weights, values[index])
-        return np.ascontiguousarray(x)
-
     def _centroids(self, gauss):
         """Facet integration: each facet's area-weighted mean of its Gauss points."""
         Q = self.points_per_facet
@@ -181,7 +172,8 @@ class RigidObstacle:
         u the displacement or (mixed formulation) the unknown it is part of."""
         values = u.x.array
         if self.integration == "facet":
-            return self._gauss_points(self._X_nodes, values)
+            dofs = self._gauss_v_dofs if values.size == self._num_v_dofs else self._gauss_dofs
+            return np.ascontiguousarray(self._gauss_X + np.einsum("pa,pak->pk", self.kernel_weights, values[dofs]))
         if self.point_weights is None:
             if values.size == self._num_v_dofs:
                 return np.ascontiguousarray(self.X + values.reshape(-1, 3)[self.nodes])
