@@ -28,5 +28,6 @@ if grep -qw avx /proc/cpuinfo 2>/dev/null; then
     tests/behaviour/test_inverted_elements.py tests/unit/test_stall_test.py tests/behaviour/test_predictor.py \
     tests/verification/test_oring.py tests/verification/test_limit_points.py tests/verification/test_continuation_deformable.py \
     tests/verification/test_self_contact.py tests/verification/test_tube_collapse.py \
-    tests/verification/test_rounded_box.py tests/behaviour/test_inertia.py tests/verification/test_facet_integration.py
+    tests/verification/test_rounded_box.py tests/behaviour/test_inertia.py tests/verification/test_facet_integration.py \
+    tests/verification/test_quadratic_surface_contact.py tests/verification/test_smooth_master.py
 fi

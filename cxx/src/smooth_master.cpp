@@ -23,12 +23,49 @@ Eigen::Vector3d node_x(std::span<const double> x, std::int32_t node) {
   return Eigen::Map<const Eigen::Vector3d>(&x[3 * static_cast<std::size_t>(node)]);
 }
 
-/// The corners of facet f next to and before corner c.
+/// The corners of facet f next to and before corner c (linear facets).
 std::pair<std::int32_t, std::int32_t> neighbours(const FacetConnectivity& facets, std::int32_t f,
                                                  int c) {
   const int k = facets.corners();
   return {facets.node(static_cast<std::size_t>(f), (c + 1) % k),
           facets.node(static_cast<std::size_t>(f), (c + k - 1) % k)};
+}
+
+/// ξ of node c of a quadratic facet: a corner, the middle of edge c − corners, or the centre.
+Eigen::Vector2d quadratic_node_xi(int num_nodes, int c) {
+  const int k = num_nodes == 6 ? 3 : 4;
+  if (c < k) return facet_vertex_xi(num_nodes, c);
+  if (c < 2 * k)
+    return 0.5 * (facet_vertex_xi(num_nodes, c - k) + facet_vertex_xi(num_nodes, c - k + 1));
+  return Eigen::Vector2d::Zero();
+}
+
+/// The tangent vectors a_1, a_2 of quadratic facet f at its node c, with ∂N/∂ξ there.
+struct QuadraticCorner {
+  Eigen::Matrix<double, 3, 2> a;
+  Eigen::Matrix<double, Eigen::Dynamic, 2> dN;
+};
+QuadraticCorner quadratic_corner(const FacetConnectivity& facets, std::int32_t f, int c,
+                                 std::span<const double> x) {
+  const int k = facets.nodes_per_facet;
+  QuadraticCorner out{Eigen::Matrix<double, 3, 2>::Zero(),
+                      facet_shape_derivatives(k, quadratic_node_xi(k, c))};
+  for (int b = 0; b < k; ++b)
+    out.a += node_x(x, facets.node(static_cast<std::size_t>(f), b)) * out.dN.row(b);
+  return out;
+}
+
+/// The contribution of facet f to the nodal normal at its node c: linear facets
+/// (x_next − x_a) × (x_prev − x_a); quadratic facets a_1 × a_2 at the node.
+Eigen::Vector3d corner_normal(const FacetConnectivity& facets, std::int32_t f, int c,
+                              std::span<const double> x) {
+  if (facets.nodes_per_facet == 6 || facets.nodes_per_facet == 9) {
+    const QuadraticCorner q = quadratic_corner(facets, f, c, x);
+    return q.a.col(0).cross(q.a.col(1));
+  }
+  const Eigen::Vector3d xa = node_x(x, facets.node(static_cast<std::size_t>(f), c));
+  const auto [next, prev] = neighbours(facets, f, c);
+  return (node_x(x, next) - xa).cross(node_x(x, prev) - xa);
 }
 
 Eigen::Vector3d unnormalised(std::int32_t node, const NodeFacets& at,
@@ -37,12 +74,9 @@ Eigen::Vector3d unnormalised(std::int32_t node, const NodeFacets& at,
   if (a + 1 >= at.offsets.size() || at.offsets[a] == at.offsets[a + 1])
     throw std::invalid_argument("nodal_normal: node " + std::to_string(node) +
                                 " is on no facet of the master surface");
-  const Eigen::Vector3d xa = node_x(x, node);
   Eigen::Vector3d m = Eigen::Vector3d::Zero();
-  for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
-    const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
-    m += (node_x(x, next) - xa).cross(node_x(x, prev) - xa);
-  }
+  for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i)
+    m += corner_normal(facets, at.facet[i], at.corner[i], x);
   if (!(m.norm() > 0))
     throw std::invalid_argument("nodal_normal: the facet normals at node " + std::to_string(node) +
                                 " cancel (a folded or degenerate master surface)");
@@ -53,10 +87,9 @@ Eigen::Vector3d unnormalised(std::int32_t node, const NodeFacets& at,
 
 NodeFacets::NodeFacets(const FacetConnectivity& facets, std::size_t num_nodes) {
   const int k = facets.nodes_per_facet;
-  if (k != 3 && k != 4)
-    throw std::invalid_argument(
-        "smooth master: facets must be linear (3 or 4 nodes), got " + std::to_string(k) +
-        " nodes per facet (quadratic facets are curved already; they are not smoothed)");
+  if (k != 3 && k != 4 && k != 6 && k != 9)
+    throw std::invalid_argument("smooth master: facets must have 3, 4, 6 or 9 nodes, got " +
+                                std::to_string(k) + " nodes per facet");
   offsets.assign(num_nodes + 1, 0);
   for (const std::int32_t n : facets.nodes) {
     if (n < 0 || static_cast<std::size_t>(n) >= num_nodes)
@@ -83,10 +116,8 @@ Eigen::Vector3d nodal_normal_value(std::int32_t node, const NodeFacets& at,
 bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at,
                const FacetConnectivity& facets, std::span<const double> x) {
   const auto a = static_cast<std::size_t>(node);
-  const Eigen::Vector3d xa = node_x(x, node);
   for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
-    const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
-    const Eigen::Vector3d corner = (node_x(x, next) - xa).cross(node_x(x, prev) - xa);
+    const Eigen::Vector3d corner = corner_normal(facets, at.facet[i], at.corner[i], x);
     if (!(corner.dot(m) > 0.7 * corner.norm())) return true;
   }
   return false;
@@ -95,13 +126,22 @@ bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at
 NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetConnectivity& facets,
                          std::span<const double> x) {
   const Eigen::Vector3d mt = unnormalised(node, at, facets, x);
+  const bool quadratic = facets.nodes_per_facet == 6 || facets.nodes_per_facet == 9;
   NodalNormal out;
   out.nodes.push_back(node);
+  const auto add = [&](std::int32_t n) {
+    if (std::find(out.nodes.begin(), out.nodes.end(), n) == out.nodes.end()) out.nodes.push_back(n);
+  };
   const auto a = static_cast<std::size_t>(node);
   for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
-    const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
-    for (const std::int32_t n : {next, prev})
-      if (std::find(out.nodes.begin(), out.nodes.end(), n) == out.nodes.end()) out.nodes.push_back(n);
+    if (quadratic) {
+      for (int b = 0; b < facets.nodes_per_facet; ++b)
+        add(facets.node(static_cast<std::size_t>(at.facet[i]), b));
+    } else {
+      const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
+      add(next);
+      add(prev);
+    }
   }
   const auto slot = [&](std::int32_t n) {
     return 3 * static_cast<int>(std::find(out.nodes.begin(), out.nodes.end(), n) - out.nodes.begin());
@@ -110,6 +150,14 @@ NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetCon
       Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, 3 * static_cast<int>(out.nodes.size()));
   const Eigen::Vector3d xa = node_x(x, node);
   for (auto i = at.offsets[a]; i < at.offsets[a + 1]; ++i) {
+    if (quadratic) {  // d(a_1 × a_2) = −[a_2]× da_1 + [a_1]× da_2, da_α = Σ_b ∂N_b/∂ξ_α dx_b
+      const QuadraticCorner q = quadratic_corner(facets, at.facet[i], at.corner[i], x);
+      const Eigen::Matrix3d c1 = cross_matrix(q.a.col(0)), c2 = cross_matrix(q.a.col(1));
+      for (int b = 0; b < facets.nodes_per_facet; ++b)
+        dmt.block<3, 3>(0, slot(facets.node(static_cast<std::size_t>(at.facet[i]), b))) +=
+            q.dN(b, 1) * c1 - q.dN(b, 0) * c2;
+      continue;
+    }
     const auto [next, prev] = neighbours(facets, at.facet[i], at.corner[i]);
     const Eigen::Vector3d en = node_x(x, next) - xa, ep = node_x(x, prev) - xa;
     dmt.block<3, 3>(0, slot(next)) -= cross_matrix(ep);
@@ -123,12 +171,12 @@ NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetCon
 }
 
 template <int NM>
-requires(NM == 3 || NM == 4) Overhang overhang(const Eigen::Vector2d& xi) {
+requires FacetNodeCount<NM> Overhang overhang(const Eigen::Vector2d& xi) {
   Overhang out{-1e300, -1};
   const auto consider = [&](double amount, int edge) {
     if (amount > out.amount) out = {amount, edge};
   };
-  if constexpr (NM == 4) {
+  if constexpr (facet_corners<NM> == 4) {
     consider(-1 - xi[1], 0);
     consider(xi[0] - 1, 1);
     consider(xi[1] - 1, 2);
@@ -176,7 +224,7 @@ bool singular(const Eigen::Matrix3d& J) {
 }  // namespace
 
 template <int NM>
-requires(NM == 3 || NM == 4) NormalFieldProjection
+requires FacetNodeCount<NM> NormalFieldProjection
 project_along_normals(const Eigen::Vector3d& x_s, const FacetNodes<NM>& X, const FacetNodes<NM>& M,
                       const Eigen::Vector2d& xi0) {
   NormalFieldProjection out;
@@ -219,13 +267,11 @@ project_along_normals(const Eigen::Vector3d& x_s, const FacetNodes<NM>& X, const
 }
 
 template <int NM>
-requires(NM == 3 || NM == 4) SmoothContact
-smooth_node_to_surface(std::span<const std::int32_t> slave_nodes, const SlaveNodes& slave,
-                       const SlaveWeights& weights, std::int32_t facet, const NodeFacets& at,
-                       const FacetConnectivity& facets, std::span<const double> x,
-                       const NormalFieldProjection& projection, double w, double eps_n,
-                       double touch, double lambda, double smoothing,
-                       const SmoothFrictionHistory* friction) {
+requires FacetNodeCount<NM> SmoothContact smooth_node_to_surface(
+    std::span<const std::int32_t> slave_nodes, const SlaveNodes& slave, const SlaveWeights& weights,
+    std::int32_t facet, const NodeFacets& at, const FacetConnectivity& facets,
+    std::span<const double> x, const NormalFieldProjection& projection, double w, double eps_n,
+    double touch, double lambda, double smoothing, const SmoothFrictionHistory* friction) {
   const int ns = static_cast<int>(slave_nodes.size());
   if (ns < 1 || slave.cols() != ns || weights.size() != ns || facets.nodes_per_facet != NM)
     throw std::invalid_argument("smooth_node_to_surface: inconsistent slave point or facet sizes");
@@ -381,21 +427,21 @@ smooth_node_to_surface(std::span<const std::int32_t> slave_nodes, const SlaveNod
   return out;
 }
 
-template Overhang overhang<3>(const Eigen::Vector2d&);
-template Overhang overhang<4>(const Eigen::Vector2d&);
-template NormalFieldProjection project_along_normals<3>(const Eigen::Vector3d&, const FacetNodes<3>&,
-                                                        const FacetNodes<3>&, const Eigen::Vector2d&);
-template NormalFieldProjection project_along_normals<4>(const Eigen::Vector3d&, const FacetNodes<4>&,
-                                                        const FacetNodes<4>&, const Eigen::Vector2d&);
-template SmoothContact smooth_node_to_surface<3>(std::span<const std::int32_t>, const SlaveNodes&,
-                                                 const SlaveWeights&, std::int32_t, const NodeFacets&,
-                                                 const FacetConnectivity&, std::span<const double>,
-                                                 const NormalFieldProjection&, double, double, double,
-                                                 double, double, const SmoothFrictionHistory*);
-template SmoothContact smooth_node_to_surface<4>(std::span<const std::int32_t>, const SlaveNodes&,
-                                                 const SlaveWeights&, std::int32_t, const NodeFacets&,
-                                                 const FacetConnectivity&, std::span<const double>,
-                                                 const NormalFieldProjection&, double, double, double,
-                                                 double, double, const SmoothFrictionHistory*);
+// The four facet kinds (3, 4, 6, 9 nodes).
+#define HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER(NM)                                         \
+  template Overhang overhang<NM>(const Eigen::Vector2d&);                                  \
+  template NormalFieldProjection project_along_normals<NM>(                                \
+      const Eigen::Vector3d&, const FacetNodes<NM>&, const FacetNodes<NM>&,                \
+      const Eigen::Vector2d&);                                                             \
+  template SmoothContact smooth_node_to_surface<NM>(                                       \
+      std::span<const std::int32_t>, const SlaveNodes&, const SlaveWeights&, std::int32_t, \
+      const NodeFacets&, const FacetConnectivity&, std::span<const double>,                \
+      const NormalFieldProjection&, double, double, double, double, double,                \
+      const SmoothFrictionHistory*);
+HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER(3)
+HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER(4)
+HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER(6)
+HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER(9)
+#undef HYPERCONTACT_INSTANTIATE_SMOOTH_MASTER
 
 }  // namespace hypercontact

@@ -37,9 +37,9 @@ void evaluate_smooth_points(const SurfaceContactInput& in, const NarrowPhase& na
       crease[a] = is_crease(static_cast<std::int32_t>(a), m[a], at, in.facets, in.x);
     }
   const int corners = in.facets.corners();
-  const double rim = NM == 4 ? 0.05 : 0.025;
+  const double rim = facet_corners<NM> == 4 ? 0.05 : 0.025;
   const Eigen::Vector2d centre =
-      NM == 4 ? Eigen::Vector2d(0, 0) : Eigen::Vector2d(1.0 / 3, 1.0 / 3);
+      facet_corners<NM> == 4 ? Eigen::Vector2d(0, 0) : Eigen::Vector2d(1.0 / 3, 1.0 / 3);
   std::vector<std::int32_t> visited;
   std::array<std::int32_t, NM> old_nodes{};
   for (std::size_t p = 0; p < in.point_area.size(); ++p) {

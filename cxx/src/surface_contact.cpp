@@ -44,19 +44,26 @@ SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in)
   detail::init_state(out, in.point_area.size());
   out.elements.numbering = DofNumbering::Global;
   if (in.smooth_master) {
-    detail::ClosedPoint<3> point3;
-    detail::ClosedPoint<4> point4;
-    if (in.facets.nodes_per_facet == 3)
-      detail::evaluate_smooth_points<3>(in, narrow, out, out.elements, nullptr, nullptr,
-                                        [&](std::size_t p) { faceted_point<3>(in, narrow, p, out, point3); });
-    else if (in.facets.nodes_per_facet == 4)
-      detail::evaluate_smooth_points<4>(in, narrow, out, out.elements, nullptr, nullptr,
-                                        [&](std::size_t p) { faceted_point<4>(in, narrow, p, out, point4); });
-    else
-      throw std::invalid_argument(
-          "evaluate_surface_contact: a smooth master needs linear facets (3 or 4 nodes), got " +
-          std::to_string(in.facets.nodes_per_facet) +
-          " (quadratic facets are curved already and are not smoothed)");
+    const auto smooth = [&]<int NM>() {
+      detail::ClosedPoint<NM> point;
+      detail::evaluate_smooth_points<NM>(
+          in, narrow, out, out.elements, nullptr, nullptr,
+          [&](std::size_t p) { faceted_point<NM>(in, narrow, p, out, point); });
+    };
+    switch (in.facets.nodes_per_facet) {
+      case 3:
+        smooth.template operator()<3>();
+        break;
+      case 4:
+        smooth.template operator()<4>();
+        break;
+      case 6:
+        smooth.template operator()<6>();
+        break;
+      default:
+        smooth.template operator()<9>();
+        break;
+    }
     return out;
   }
   switch (in.facets.nodes_per_facet) {

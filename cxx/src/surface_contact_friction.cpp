@@ -103,7 +103,7 @@ void evaluate_points(const SurfaceFrictionInput& fin, const NarrowPhase& narrow,
     friction_point<NM>(fin, narrow, p, s, point);
 }
 
-/// Every slave point against a smooth master of facets of NM = 3 or 4 nodes.
+/// Every slave point against a smooth master of facets of NM nodes.
 template <int NM>
 void evaluate_smooth(const SurfaceFrictionInput& fin, const NarrowPhase& narrow,
                      SurfaceFrictionEvaluation& s) {
@@ -121,14 +121,20 @@ SurfaceFrictionEvaluation evaluate_surface_friction(const SurfaceFrictionInput& 
   const NarrowPhase narrow({in.x, in.facets, in.edge_neighbour});
   SurfaceFrictionEvaluation s = empty_evaluation(in.point_area.size());
   if (in.smooth_master) {
-    if (in.facets.nodes_per_facet == 3)
-      evaluate_smooth<3>(fin, narrow, s);
-    else if (in.facets.nodes_per_facet == 4)
-      evaluate_smooth<4>(fin, narrow, s);
-    else
-      throw std::invalid_argument(std::string(who) +
-                                  ": a smooth master needs linear facets (3 or 4 nodes), got " +
-                                  std::to_string(in.facets.nodes_per_facet));
+    switch (in.facets.nodes_per_facet) {
+      case 3:
+        evaluate_smooth<3>(fin, narrow, s);
+        break;
+      case 4:
+        evaluate_smooth<4>(fin, narrow, s);
+        break;
+      case 6:
+        evaluate_smooth<6>(fin, narrow, s);
+        break;
+      default:
+        evaluate_smooth<9>(fin, narrow, s);
+        break;
+    }
     return s;
   }
   switch (in.facets.nodes_per_facet) {

@@ -59,22 +59,23 @@ struct SurfaceScene {
     compute_edge_neighbours();
   }
 
-  /// Facet across each edge k (node k → k + 1), −1 on the boundary.
+  /// Facet across each edge k (corner k → corner k + 1), −1 on the boundary.
   void compute_edge_neighbours() {
     const int n = nodes_per_facet;
+    const int c = (n == 3 || n == 6) ? 3 : 4;  // corners = edges
     const std::size_t nf = facets.size() / n;
-    edge_neighbour.assign(facets.size(), -1);
+    edge_neighbour.assign(c * nf, -1);
     std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> owner;
     for (std::size_t f = 0; f < nf; ++f)
-      for (int k = 0; k < n; ++k) {
-        const std::int32_t a = facets[n * f + k], b = facets[n * f + (k + 1) % n];
+      for (int k = 0; k < c; ++k) {
+        const std::int32_t a = facets[n * f + k], b = facets[n * f + (k + 1) % c];
         const auto key = std::minmax(a, b);
         if (auto it = owner.find(key); it != owner.end()) {
-          const std::int32_t g = it->second / n;
-          edge_neighbour[n * f + k] = g;
+          const std::int32_t g = it->second / c;
+          edge_neighbour[c * f + k] = g;
           edge_neighbour[it->second] = static_cast<std::int32_t>(f);
         } else {
-          owner[key] = static_cast<std::int32_t>(n * f + k);
+          owner[key] = static_cast<std::int32_t>(c * f + k);
         }
       }
   }

@@ -1,6 +1,7 @@
 // Coulomb friction against a smooth master (smooth_master.hpp with a SmoothFrictionHistory;
 // evaluate_surface_friction with smooth_master = true): the assembled tangent against central
-// differences of the assembled residual on curved, distorted quadrilateral and triangle caps
+// differences of the assembled residual on curved, distorted quadrilateral and triangle caps of
+// linear and quadratic facets
 // (stick and slip, history on the same or a neighbouring facet, with t_old, none, open points;
 // penalty, μ = 0, augmented, smoothed), the faceted element on a flat master, the Coulomb law
 // and the return map's outputs, force balance, and the total and normal forces.
@@ -85,8 +86,8 @@ std::vector<Point> points(bool triangles) {
           {14, {0.25, 0.25}, 0.01, 14, {0.27, 0.25}, 0.0, open}};
 }
 
-FrictionScene scene(bool triangles, double radius, const std::vector<Point>& pts) {
-  FrictionScene f{cap(triangles, radius), {}, {}, {}};
+FrictionScene scene(bool triangles, double radius, const std::vector<Point>& pts, int order = 1) {
+  FrictionScene f{cap(triangles, radius, 3, 1.0, true, order), {}, {}, {}};
   SurfaceScene& s = f.contact;
   const SurfaceScene master = s;
   for (const Point& p : pts) {
@@ -107,9 +108,9 @@ FrictionScene scene(bool triangles, double radius, const std::vector<Point>& pts
 /// The variants: 0 penalty, 1 μ = 0, 2 augmented (λ_N = 30), 3 smoothed (δ = 0.02).
 const char* const variant_name[] = {"penalty", "mu = 0", "augmented", "smoothed"};
 
-FrictionScene variant(bool triangles, int v) {
+FrictionScene variant(bool triangles, int v, int order = 1) {
   const std::vector<Point> pts = points(triangles);
-  FrictionScene f = scene(triangles, 3.0, pts);
+  FrictionScene f = scene(triangles, 3.0, pts, order);
   if (v == 1) f.mu = 0.0;
   if (v == 2) f.contact.multipliers.assign(pts.size(), 30.0);
   if (v == 3) f.contact.smoothing = 0.02;
@@ -139,10 +140,11 @@ std::size_t element_of(const ContactElements& e, std::size_t p) {
 
 /// Pairing, states, the point without history (its element = the frictionless smooth one: no
 /// friction force, no friction tangent) and the assembled tangent against central differences.
-void expect_tangents(bool triangles) {
+void expect_tangents(bool triangles, int order = 1) {
   for (int v = 0; v < 4; ++v) {
-    SCOPED_TRACE(std::string(triangles ? "triangles, " : "quads, ") + variant_name[v]);
-    const FrictionScene f = variant(triangles, v);
+    SCOPED_TRACE(std::string(triangles ? "triangles, " : "quads, ") + "order " +
+                 std::to_string(order) + ", " + variant_name[v]);
+    const FrictionScene f = variant(triangles, v, order);
     const std::vector<Point> pts = points(triangles);
     const SurfaceFrictionEvaluation e = f.evaluate(f.contact.x);
     for (std::size_t p = 0; p < pts.size(); ++p) {
@@ -167,8 +169,11 @@ void expect_tangents(bool triangles) {
         [&f](std::span<const double> y) { return f.evaluate(y); }, f.contact.x);
     char measured[32];
     std::snprintf(measured, sizeof measured, "%.2e", error);
-    ::testing::Test::RecordProperty(std::string(triangles ? "fd_error_tri_" : "fd_error_quad_") +
-                                        std::to_string(v), measured);
+    ::testing::Test::RecordProperty(
+        std::string(triangles ? "fd_error_tri" : "fd_error_quad") +
+            std::to_string(order == 1 ? (triangles ? 3 : 4) : (triangles ? 6 : 9)) + "_" +
+            std::to_string(v),
+        measured);
     EXPECT_LE(error, 1e-6);
   }
 }
@@ -180,6 +185,16 @@ TEST(SmoothMasterFrictionTangent, CurvedQuadrilateralsStickSlipHistoryAndLaws) {
 
 // Friction tangent = central differences of the assembled residual, curved triangles.
 TEST(SmoothMasterFrictionTangent, CurvedTrianglesStickSlipHistoryAndLaws) { expect_tangents(true); }
+
+// The same on 9-node facets.
+TEST(SmoothMasterFrictionTangent, QuadraticQuadrilateralsStickSlipHistoryAndLaws) {
+  expect_tangents(false, 2);
+}
+
+// The same on 6-node facets.
+TEST(SmoothMasterFrictionTangent, QuadraticTrianglesStickSlipHistoryAndLaws) {
+  expect_tangents(true, 2);
+}
 
 /// The in-plane unit vectors of the placed flat cap.
 Eigen::Matrix<double, 3, 2> in_plane() {

@@ -48,12 +48,6 @@ def test_on_a_flat_master_it_is_the_faceted_element(tmp_path):
 def test_settings_are_checked_naming_the_key(tmp_path):
     with pytest.raises(scene.SceneError, match=r"contact\[0\]\.master_surface"):
         scene.load(blocks("nagata"))
-    data = blocks("smooth")
-    data["discretisation"] = {"degree": 2, "quadrature_degree": 4}
-    sim = None
-    with pytest.raises(ValueError, match=r"contact 'interface'.*master_surface = \"smooth\" needs linear elements"):
-        sim = Simulation(scene.load(data, [f"output.dir={tmp_path}"]), MPI.COMM_SELF, log=quiet)
-    assert sim is None
 
 
 def block_on_cylinder(mu):

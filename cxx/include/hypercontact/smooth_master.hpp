@@ -1,12 +1,12 @@
-// A smooth master surface (docs/method.md §3.6): a deformable master of linear facets (3-node
-// triangles, 4-node quadrilaterals) carries a C0 field of averaged nodal normals, and a slave
-// point is projected onto it along that field instead of by the closest point. Its pressure acts
-// along the interpolated normal. Gap, normal and force are then continuous where a slave point
-// crosses an edge or a vertex of the master, where the faceted closest-point element turns its
-// force by the angle between the facets at once (the Newton stall of a point bouncing between two
-// facets). The tangent is the exact derivative of that force; it is not symmetric and it couples
-// the point with the nodes whose positions make the facet's nodal normals (the neighbour
-// stencil).
+// A smooth master surface (docs/method.md §3.6): a deformable master (3- and 4-node facets, and
+// the curved 6- and 9-node facets of quadratic elements) carries a C0 field of averaged nodal
+// normals, and a slave point is projected onto it along that field instead of by the closest
+// point. Its pressure acts along the interpolated normal. Gap, normal and force are then
+// continuous where a slave point crosses an edge or a vertex of the master, where the faceted
+// closest-point element turns its force by the angle between the facets at once (the Newton
+// stall of a point bouncing between two facets). The tangent is the exact derivative of that
+// force; it is not symmetric and it couples the point with the nodes whose positions make the
+// facet's nodal normals (the neighbour stencil).
 #pragma once
 
 #include <Eigen/Core>
@@ -27,19 +27,22 @@ struct NodeFacets {
   std::vector<std::int32_t> facet;
   std::vector<std::int8_t> corner;
 
-  /// Throws std::invalid_argument unless the facets are linear (3 or 4 nodes) and every node
+  /// Throws std::invalid_argument unless the facets have 3, 4, 6 or 9 nodes and every node
   /// index is below num_nodes.
   NodeFacets(const FacetConnectivity& facets, std::size_t num_nodes);
 };
 
-/// The unit nodal normal at a node a of the master surface,
-///   m_a = m̃/|m̃|,  m̃ = Σ over the facets at a of (x_next − x_a) × (x_prev − x_a)
-/// (next and prev: the facet's corners after and before a, counter-clockwise seen from outside;
-/// on a triangle 2 × its area times its normal, on a quadrilateral the corner's parallelogram),
+/// The unit nodal normal at a node a of the master surface, m_a = m̃/|m̃| with m̃ the sum over
+/// the facets at a of one vector per facet:
+///   linear facets: (x_next − x_a) × (x_prev − x_a) (next and prev: the facet's corners after and
+///     before a, counter-clockwise seen from outside; on a triangle 2 × its area times its normal,
+///     on a quadrilateral the corner's parallelogram);
+///   quadratic facets (6, 9 nodes; a may be a corner, an edge node or the centre):
+///     a_1 × a_2 = ∂x_M/∂ξ_1 × ∂x_M/∂ξ_2 at the node's ξ, over all the facet's nodes;
 /// and its derivative ∂m_a/∂x with respect to the nodes it depends on.
 struct NodalNormal {
   Eigen::Vector3d m;
-  std::vector<std::int32_t> nodes;  ///< a first, then the facets' other corners next to a
+  std::vector<std::int32_t> nodes;  ///< a first, then the facets' nodes m̃ depends on
   Eigen::Matrix<double, 3, Eigen::Dynamic> jacobian;  ///< 3 × 3 nodes.size(): ∂m/∂x_{nodes[j]}
 };
 
@@ -51,8 +54,8 @@ Eigen::Vector3d nodal_normal_value(std::int32_t node, const NodeFacets& at,
 NodalNormal nodal_normal(std::int32_t node, const NodeFacets& at, const FacetConnectivity& facets,
                          std::span<const double> x);
 
-/// Whether node a is a crease: a corner normal (x_next − x_a) × (x_prev − x_a) of one of its
-/// facets more than 45° (cos < 0.7) from m, its unit nodal normal — a folded hinge, a corner of the
+/// Whether node a is a crease: the vector of one of its facets in m̃ (nodal_normal) more than
+/// 45° (cos < 0.7) from m, its unit nodal normal — a folded hinge, a corner of the
 /// body, where the averaged normal represents no facet and the normal field turns over a facet
 /// (or cancels). The smooth evaluation keeps the faceted element on facets with such a node.
 bool is_crease(std::int32_t node, const Eigen::Vector3d& m, const NodeFacets& at,
@@ -73,9 +76,10 @@ struct NormalFieldProjection {
 };
 
 template <int NM>
-requires(NM == 3 || NM == 4) NormalFieldProjection
-project_along_normals(const Eigen::Vector3d& x_s, const FacetNodes<NM>& X, const FacetNodes<NM>& M,
-                      const Eigen::Vector2d& xi0);
+requires FacetNodeCount<NM> NormalFieldProjection project_along_normals(const Eigen::Vector3d& x_s,
+                                                                        const FacetNodes<NM>& X,
+                                                                        const FacetNodes<NM>& M,
+                                                                        const Eigen::Vector2d& xi0);
 
 /// How far ξ lies outside the reference facet (≤ 0: on it) and across which edge: quadrilateral
 /// max(|ξ1|, |ξ2|) − 1, triangle max(−ξ2, ξ1 + ξ2 − 1, −ξ1) (edges 0, 1, 2 in that order).
@@ -84,7 +88,7 @@ struct Overhang {
   int edge;
 };
 template <int NM>
-requires(NM == 3 || NM == 4) Overhang overhang(const Eigen::Vector2d& xi);
+requires FacetNodeCount<NM> Overhang overhang(const Eigen::Vector2d& xi);
 
 /// The contact element of a slave point x_s = Σ M_i x_i against a facet of the smooth master,
 /// at the projection along the normal field (ξ, t), with the pressure p_N = normal_pressure(ĝ, ε_N,
@@ -132,12 +136,11 @@ struct SmoothContact {
 /// point's weight; closed for ĝ ≤ touch at λ_N = δ = 0. Throws std::invalid_argument on sizes,
 /// std::runtime_error if the projection's Jacobian is singular.
 template <int NM>
-requires(NM == 3 || NM == 4) SmoothContact
-smooth_node_to_surface(std::span<const std::int32_t> slave_nodes, const SlaveNodes& slave,
-                       const SlaveWeights& weights, std::int32_t facet, const NodeFacets& at,
-                       const FacetConnectivity& facets, std::span<const double> x,
-                       const NormalFieldProjection& projection, double w, double eps_n,
-                       double touch = 0.0, double lambda = 0.0, double smoothing = 0.0,
-                       const SmoothFrictionHistory* friction = nullptr);
+requires FacetNodeCount<NM> SmoothContact smooth_node_to_surface(
+    std::span<const std::int32_t> slave_nodes, const SlaveNodes& slave, const SlaveWeights& weights,
+    std::int32_t facet, const NodeFacets& at, const FacetConnectivity& facets,
+    std::span<const double> x, const NormalFieldProjection& projection, double w, double eps_n,
+    double touch = 0.0, double lambda = 0.0, double smoothing = 0.0,
+    const SmoothFrictionHistory* friction = nullptr);
 
 }  // namespace hypercontact

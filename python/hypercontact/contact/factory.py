@@ -146,9 +146,6 @@ def _make(entry, s, V, facet_tags, slaves, masters, constrained, second, mu_max,
                else Frictionless())
     else:
         smooth = entry.get("master_surface", "faceted") == "smooth"
-        if smooth and dfx.degree_of(V) != 1:
-            raise ValueError(f"contact {s.name!r}: master_surface = \"smooth\" needs linear elements (degree 1); "
-                             "quadratic facets are curved already and are not smoothed")
         geometry = SurfacePairing(V, facet_tags, slaves, masters, constrained, entry["integration"],
                                   entry["capture"], s.name, u_dofs, u_global, smooth=smooth)
         law = Frictionless() if second else _surface_law(entry, s, geometry, comm, mu_max)

@@ -185,8 +185,8 @@ class SurfaceContact(Contact):
                                                    'facets)')) = "nodal"
     capture: number(NON_NEGATIVE, LENGTH) = 0.0
     #: "smooth": the master's facets carry averaged nodal normals; slave points are projected along
-    #: them and pressed along them (no force jump where a point crosses a facet edge; linear
-    #: elements)
+    #: them and pressed along them (no force jump where a point crosses a facet edge; linear and
+    #: quadratic facets)
     master_surface: string(one_of(("faceted", "smooth"), '"faceted" (closest point on the facets, the paper) '
                                                          'or "smooth" (along averaged nodal normals)')) = "faceted"
 
