@@ -10,8 +10,8 @@ from petsc4py import PETSc
 from .. import _dolfinx as dfx
 from ..model.inversion import INVERTED_ELEMENT
 from .monitor import IterationHistory
-from .newton import (STALLED, StallTest, converged_reason_name, line_search_of, make_snes, residual_norms_of,
-                     set_line_search)
+from .newton import (KRYLOV_RTOL_MIN, STALLED, StallTest, converged_reason_name, krylov_forcing, line_search_of,
+                     make_snes, residual_norms_of, set_line_search)
 
 class NewtonSolver:
     """SNES (newtonls) with the scene's solver settings. Line search "auto":
@@ -44,6 +44,12 @@ class NewtonSolver:
                            if on and solver["stall_its"] > 0 else None)
         self.crawl_stop = StallTest(self.snes, solver["stall_decrease"], 2, 0) if on else None
         self.no_stop = StallTest(self.snes, 0.0, 0, 0)  # the default test, with a reference |R_0|
+        # inexact Newton with the iterative solver (newton.krylov_forcing), unless the scene fixes the
+        # Krylov tolerance itself (solver.petsc.ksp_rtol)
+        self.forcing = (model.problem.linear_kind == "iterative" and "ksp_rtol" not in solver["petsc"])
+        for test in (self.cycle_stop, self.crawl_stop, self.no_stop):
+            if test is not None and self.forcing:
+                test.forcing = self._force
         self.history = IterationHistory(model.contacts)
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
@@ -73,6 +79,9 @@ class NewtonSolver:
         self.model.problem.jacobian(snes, x, A, P)
         self.preconditioner_setups += 1  # PETSc sets the preconditioner up (factorises) for every new tangent
         self._t_tangent = time.perf_counter()
+
+    def _force(self, fnorm, target):
+        self.snes.getKSP().setTolerances(rtol=krylov_forcing(fnorm, target))
 
     def _krylov_monitor(self, ksp, its, rnorm):
         now = time.perf_counter()
@@ -139,6 +148,8 @@ class NewtonSolver:
             self.snes.solve(None, x)
         finally:
             self.snes.setConvergenceTest("default")
+            if self.forcing:  # whatever solves with this KSP next starts from the fixed tolerance
+                self.snes.getKSP().setTolerances(rtol=KRYLOV_RTOL_MIN)
         self.linear_iterations.append(self.snes.getLinearSolveIterations())
         reason = self.snes.getConvergedReason()
         norms = residual_norms_of(self.snes)
