@@ -35,6 +35,16 @@ void evaluate_points(const SurfaceContactInput& in, const NarrowPhase& narrow,
   for (std::size_t p = 0; p < in.point_area.size(); ++p) faceted_point<NM>(in, narrow, p, out, point);
 }
 
+/// Every slave point against a smooth master of facets of NM nodes.
+template <int NM>
+void evaluate_smooth(const SurfaceContactInput& in, const NarrowPhase& narrow,
+                     SurfaceContactEvaluation& out) {
+  detail::ClosedPoint<NM> point;
+  detail::evaluate_smooth_points<NM>(
+      in, narrow, out, out.elements, nullptr, nullptr,
+      [&](std::size_t p) { faceted_point<NM>(in, narrow, p, out, point); });
+}
+
 }  // namespace
 
 SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in) {
@@ -44,24 +54,18 @@ SurfaceContactEvaluation evaluate_surface_contact(const SurfaceContactInput& in)
   detail::init_state(out, in.point_area.size());
   out.elements.numbering = DofNumbering::Global;
   if (in.smooth_master) {
-    const auto smooth = [&]<int NM>() {
-      detail::ClosedPoint<NM> point;
-      detail::evaluate_smooth_points<NM>(
-          in, narrow, out, out.elements, nullptr, nullptr,
-          [&](std::size_t p) { faceted_point<NM>(in, narrow, p, out, point); });
-    };
     switch (in.facets.nodes_per_facet) {
       case 3:
-        smooth.template operator()<3>();
+        evaluate_smooth<3>(in, narrow, out);
         break;
       case 4:
-        smooth.template operator()<4>();
+        evaluate_smooth<4>(in, narrow, out);
         break;
       case 6:
-        smooth.template operator()<6>();
+        evaluate_smooth<6>(in, narrow, out);
         break;
       default:
-        smooth.template operator()<9>();
+        evaluate_smooth<9>(in, narrow, out);
         break;
     }
     return out;
