@@ -179,3 +179,60 @@ def test_a_reference_norm_sets_the_relative_and_divergence_tolerances():
     assert run(test, [1e-6, 5e-12])[-1] == R.CONVERGED_ITERATING
     test.reference = 0.0
     assert run(test, [1e-6, 2e-2])[-1] == R.DIVERGED_DTOL
+
+
+class Halvings:
+    """A stand-in for InversionDamping: the list of halvings it made."""
+
+    def __init__(self):
+        self.halvings = []
+
+
+def run_damped(test, damping, norms, damped):
+    """``damped[k]``: the correction that led to iterate k was halved."""
+    reasons = []
+    for k, (f, d) in enumerate(zip(norms, damped)):
+        if d:
+            damping.halvings.append(1)
+        reasons.append(test(test_snes, k, (1.0, 1.0, f)))
+    return reasons
+
+
+@pytest.mark.parametrize("window, cycle_window", [(0, 4), (2, 0), (0, 0)])
+def test_two_slow_damped_corrections_in_a_row_stop_any_solve(window, cycle_window):
+    """The one-cell block squeezed 70 % in one step: every correction halved,
+    |R| 2.6e3, 2.1e3, 1.0e3, 1.0e3, 1.1e3: stopped at the fourth iterate
+    whatever the test's other stops (the full-step test has no crawl stop)."""
+    norms, damped = [2.6e3, 2.1e3, 1.0e3, 0.999e3, 1.1e3, 1.0e3], [False, True, True, True, True, True]
+    test, damping = StallTest(test_snes, 0.05, window, cycle_window), Halvings()
+    test.damping = damping
+    reasons = run_damped(test, damping, norms, damped)
+    assert all(r == R.CONVERGED_ITERATING for r in reasons[:4]) and reasons[4] == R.DIVERGED_MAX_IT and test.stalled
+
+
+@pytest.mark.parametrize("damped", [
+    [False, True, False, True, False, True],   # slow damped iterations, never two in a row
+    [False, False, False, False, False, False],  # slow, but not damped: the full-step test goes on
+])
+def test_slow_iterations_not_both_damped_go_on(damped):
+    norms = [2.6e3, 2.1e3, 1.0e3, 0.999e3, 0.998e3, 0.997e3]
+    test, damping = StallTest(test_snes, 0.05, 0, 0), Halvings()
+    test.damping = damping
+    assert all(r == R.CONVERGED_ITERATING for r in run_damped(test, damping, norms, damped)) and not test.stalled
+
+
+def test_damped_but_converging_goes_on():
+    """The 32×32×8 punch pressed 2 mm in one step, damped: |R| rises and falls
+    while the active set settles, then converges."""
+    norms = [4578, 35.1, 115, 108, 208, 123, 54.3, 32.5, 0.969, 1.21, 0.0029, 1.7e-6, 2.4e-12]
+    test, damping = StallTest(test_snes, 0.05, 0, 0), Halvings()
+    test.damping = damping
+    reasons = run_damped(test, damping, norms, [False] + [True] * 8 + [False] * 4)
+    assert all(r == R.CONVERGED_ITERATING for r in reasons[:-1]) and reasons[-1] == R.CONVERGED_FNORM_ABS
+
+
+def test_without_a_decrease_fraction_damping_stops_nothing():
+    norms = [2.6e3, 2.1e3, 2.2e3, 2.3e3, 2.4e3]
+    test, damping = StallTest(test_snes, 0.0, 0, 0), Halvings()
+    test.damping = damping
+    assert all(r == R.CONVERGED_ITERATING for r in run_damped(test, damping, norms, [False] + [True] * 4))

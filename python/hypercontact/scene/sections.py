@@ -135,6 +135,7 @@ class Solver(SceneModel):
                           '"auto" (direct up to direct_max_unknowns, else iterative), "direct" (MUMPS LU) or '
                           '"iterative" (GMRES + GAMG with the rigid-body modes)')) = "auto"
     direct_max_unknowns: integer(POSITIVE) = 200000
+    damp_inversion: Boolean = False
     petsc: Table = {}
 
     _petsc_options = validator("petsc", allow_reuse=True)(check_petsc_options)

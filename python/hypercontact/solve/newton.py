@@ -312,6 +312,12 @@ class StallTest:
         self.reference = 0.0
         #: called as forcing(|R|, target) before every linear solve of the Newton solve (None: no call)
         self.forcing = None
+        #: the solve's InversionDamping (None: none); with min_decrease > 0, two damped corrections in a
+        #: row that each lowered |R| by less than that fraction stop the solve as stalled, whatever
+        #: the line search: halving towards admissible states that do not approach equilibrium is a
+        #: crawl too (the one-cell block squeezed 70 % in one step with the sharp law: damped every
+        #: iteration, |R| 2.6e3, 2.1e3, 1.0e3, 1.0e3, 1.1e3, … for 25 iterations)
+        self.damping = None
         self.min_decrease, self.window, self.cycle_window = float(min_decrease), int(window), int(cycle_window)
         self.rtol, self.atol = snes.getTolerances()[:2]
         self.max_funcs = snes.getMaxFunctionEvaluations()
@@ -321,6 +327,7 @@ class StallTest:
     def reset(self):
         self.norms, self.stalled, self.ttol, self.rnorm0 = [], False, 0.0, 0.0
         self.best, self.since_best = np.inf, 0
+        self.damped, self._damped_seen = [], 0  # per iterate: whether the correction that led to it was halved
 
     def __call__(self, snes, it, norms):
         xnorm, ynorm, fnorm = norms  # (how petsc4py passes them)
@@ -329,6 +336,9 @@ class StallTest:
             self.reset()
             self.rnorm0 = max(fnorm, self.reference)
             self.ttol = self.rnorm0 * self.rtol
+        halvings = len(self.damping.halvings) if self.damping is not None else 0
+        self.damped.append(it > 0 and halvings > self._damped_seen)
+        self._damped_seen = halvings
         self.norms.append(fnorm)
         if fnorm < (1.0 - self.min_decrease) * self.best or it == 0:
             self.best, self.since_best = fnorm, 0
@@ -349,12 +359,14 @@ class StallTest:
         recent = self.norms[-self.window - 1:]
         crawl = self.window > 0 and len(recent) == self.window + 1 and all(
             b > (1.0 - self.min_decrease) * a for a, b in zip(recent, recent[1:]))
+        damped_crawl = self.min_decrease > 0 and len(self.norms) >= 3 and all(self.damped[-2:]) and all(
+            b > (1.0 - self.min_decrease) * a for a, b in zip(self.norms[-3:], self.norms[-2:]))
         # a cycle revisits: |R| within the fraction of its value two or three iterations back (a period-2
         # or -3 cycle; a steady recovery from an overshoot, e.g. 80, 4e4, 1.1e4, 3.3e3, 957, does not)
         cycle = 0 < self.cycle_window <= self.since_best and any(
             abs(fnorm - self.norms[-1 - p]) <= self.min_decrease * self.norms[-1 - p]
             for p in (2, 3) if len(self.norms) > p)
-        if crawl or cycle:
+        if crawl or cycle or damped_crawl:
             self.stalled = True
             return R.DIVERGED_MAX_IT
         return self._iterating(fnorm)

@@ -8,7 +8,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 from .. import _dolfinx as dfx
-from ..model.inversion import INVERTED_ELEMENT
+from ..model.inversion import INVERTED_ELEMENT, InversionDamping
 from .monitor import IterationHistory
 from .newton import (KRYLOV_RTOL_MIN, STALLED, StallTest, converged_reason_name, krylov_forcing, line_search_of,
                      make_snes, residual_norms_of, set_line_search)
@@ -67,6 +67,15 @@ class NewtonSolver:
         self.snes.setJacobian(self._jacobian, model.problem.A)
         if model.problem.linear_kind == "iterative":
             self.snes.getKSP().setMonitor(self._krylov_monitor)
+        # solver.damp_inversion: a full step that would invert an element is halved until it does not
+        self.damping = None
+        if solver["damp_inversion"]:
+            self.damping = InversionDamping(model.w, model.u, model.volume.u_dofs,
+                                            model.scene["discretisation"]["quadrature_degree"])
+            self.snes.setLineSearchPreCheck(self.damping)
+            for test in (self.cycle_stop, self.crawl_stop, self.no_stop):
+                if test is not None:
+                    test.damping = self.damping
         self.inverted = None  # InversionCheck's answer at the end of the last solve
         self.reference = 0.0  # the current solve's reference |R_0| (solve)
         self.last_snes_reason = None
@@ -143,6 +152,7 @@ class NewtonSolver:
         model, x = self.model, self.model.problem.x
         model.w.vector.copy(x)
         self.history.reset()
+        damped_before = len(self.damping.halvings) if self.damping is not None else 0
         self.snes.setConvergenceTest(stall_test)
         try:
             self.snes.solve(None, x)
@@ -158,7 +168,8 @@ class NewtonSolver:
             name = STALLED  # (SNES was told DIVERGED_MAX_IT)
         self.last_snes_reason = name
         record = {"line_search": line_search_of(self.snes), "newton_iterations": self.snes.getIterationNumber(),
-                  "linear_iterations": self.linear_iterations[-1], "snes_reason": name, "residual_norms": norms}
+                  "linear_iterations": self.linear_iterations[-1], "snes_reason": name, "residual_norms": norms,
+                  "damped_halvings": self.damping.halvings[damped_before:] if self.damping is not None else []}
         self.solves.append(record)
         # every rank must take the same branch: a NaN on one rank fails the step on all
         finite = model.comm.allreduce(int(np.all(np.isfinite(x.array))), op=MPI.MIN)

@@ -109,7 +109,7 @@ class Run:
         self._events = {name: PETSc.Log.Event(name) for name in ("SNESSolve", "SNESFunctionEval", "SNESJacobianEval")}
         self._t0 = {name: e.getPerfInfo()["time"] for name, e in self._events.items()}
         self._started, self._progress0 = time.perf_counter(), 0.0
-        self._linear_before = (0, 0.0, 0.0)
+        self._linear_before = (0, 0.0, 0.0, 0)
 
     def split(self):
         """The timers, with the linear solve = SNES time less residual and
@@ -123,14 +123,17 @@ class Run:
             iterative = self.model.problem.linear_kind == "iterative"
             self.timers.linear = {"kind": self.model.problem.linear_kind, "preconditioner_setups": counts[0],
                                   "preconditioner_setup_s": counts[1] if iterative else None,
-                                  "krylov_s": counts[2] if iterative else None}
+                                  "krylov_s": counts[2] if iterative else None,
+                                  # Newton corrections halved so as not to invert an element (InversionDamping)
+                                  "damped_corrections": counts[3]}
         return self.timers
 
     def _linear_counts(self):
-        """(preconditioner set-ups, their seconds, Krylov seconds) of this run's load-control
+        """(preconditioner set-ups, their seconds, Krylov seconds, damped corrections) of this run's load-control
         Newton solves: the phases before (folded) and the current one's."""
         newton = getattr(self.driver, "newton", None)
-        now = (newton.preconditioner_setups, newton.preconditioner_setup_s, newton.krylov_s) if newton else (0, 0, 0)
+        now = ((newton.preconditioner_setups, newton.preconditioner_setup_s, newton.krylov_s,
+                len(newton.damping.halvings) if newton.damping is not None else 0) if newton else (0, 0, 0, 0))
         return tuple(a + b for a, b in zip(self._linear_before, now))
 
     def _fold_linear_counts(self):
