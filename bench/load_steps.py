@@ -3,12 +3,12 @@ path dependent: the return mapping integrates the slip over each step, so a
 result is converged only when it no longer moves with Δλ, as with the mesh).
 
     .venv/bin/python bench/load_steps.py [--meshes 16x4 32x8] [--cases punch_mu0.3_0 punch_mu0_1]
-                                         [--dlams 0.1 0.05 0.025 0.0125]
+                                         [--dlams 0.1 0.05 0.025 0.0125] [--name load_steps]
 
 Runs each case and mesh of scenes/punch_*.toml with fixed load steps Δλ
 (``steps.initial = steps.max = Δλ``) and with the scene's own adaptive
 steps, and writes
-``bench/results/load_steps.md`` and ``load_steps.json``: the punch force at
+``bench/results/load_steps.md`` and ``load_steps.json`` (``--name``: another name): the punch force at
 full indentation, its change against the smallest Δλ, load steps, Newton
 iterations and wall time. With the finest Δλ's result as the reference it
 also says which of the runs is within 1 %. A benchmark reports, it asserts
@@ -30,6 +30,7 @@ def main():
     ap.add_argument("--dlams", nargs="+", type=float, default=[0.1, 0.05, 0.025, 0.0125])
     ap.add_argument("--work", default="/tmp/hypercontact_load_steps", help="the runs' results folders")
     ap.add_argument("--reuse", action="store_true", help="take finished runs from --work as they are")
+    ap.add_argument("--name", default="load_steps", help="results file name in bench/results (without suffix)")
     args = ap.parse_args()
     work = Path(args.work)
     rows = []
@@ -51,7 +52,7 @@ def write(rows, args):
     for r in rows:
         r.pop("curve", None)
         r.pop("orders", None)
-    (OUT / "load_steps.json").write_text(json.dumps(rows, indent=1))
+    (OUT / f"{args.name}.json").write_text(json.dumps(rows, indent=1))
     finest = f"{min(args.dlams):g}"
     lines = [
         "# The frictional punch against the load step (bench/load_steps.py)",
@@ -74,7 +75,7 @@ def write(rows, args):
                   if ref and r["status"] == "completed" and ref["status"] == "completed" else "")
         lines.append(f"| {r['case']} | {r['mesh']} | {r['dlam']} | {r['status']} | {r['punch_force']:.2f} | "
                      f"{change} | {r['steps']} | {r['newton_total']} | {r['wall_time']:.0f} |")
-    (OUT / "load_steps.md").write_text("\n".join(lines) + "\n")
+    (OUT / f"{args.name}.md").write_text("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":
