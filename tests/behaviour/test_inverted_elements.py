@@ -19,14 +19,13 @@ from reference.block import PARAMS, block_scene
 EPS = 1e4
 
 
-def squeeze(out, d, max_it=25, law=None, linesearch="auto", stall_decrease=None, damp=False, after_nan=False):
+def squeeze(out, d, max_it=25, law=None, linesearch="auto", stall_decrease=None, damp=False):
     """The block pressed by d in one step (at most 4 cut-backs); ``law``: a
     ψ(F, **block parameters) instead of the scene's Mooney–Rivlin; ``damp``:
-    solver.damp_inversion; ``after_nan``: solver.fallback_after_nan."""
+    solver.damp_inversion."""
     sc = block_scene(out)
     sc["solver"]["max_it"] = max_it
     sc["solver"]["damp_inversion"] = damp
-    sc["solver"]["fallback_after_nan"] = after_nan
     if stall_decrease is not None:
         sc["solver"]["stall_decrease"] = stall_decrease
     sc["solver"]["linesearch"] = linesearch
@@ -68,40 +67,12 @@ def test_inverting_step_is_cut_back_and_recovers(out_dir):
         assert n == len(writer.steps) and finite
 
 
-def test_a_solve_that_inverts_is_cut_back_without_the_other_line_search(out_dir):
-    """The same squeeze with linesearch = "auto": the full-step solve goes
-    NaN at its first iterate and the step is cut back at once, without the
-    backtracking fallback (solver.fallback_after_nan = false, the default);
-    the run ends on the closed-form state in fewer Newton iterations than
-    with the fallback, and on the same state as with it."""
-    runs = {}
-    for after_nan in (False, True):
-        folder = out_dir / f"after_nan{after_nan}"
-        folder.mkdir()
-        sim, _ = squeeze(folder, 0.7, max_it=25, after_nan=after_nan)
-        writer = sim.run()
-        summary = json.loads((folder / "summary.json").read_text())
-        runs[after_nan] = (summary, sim.contacts[0].force(sim.u)[2], writer.steps[-1]["load_factor"])
-    (direct, force, lam), (tried, force_tried, lam_tried) = runs[False], runs[True]
-    assert [[(s["line_search"], s["reason"]) for s in f["solves"]] for f in direct["failed_attempts"]] == [
-        [("basic", "DIVERGED_FNORM_NAN")]]
-    assert [s["line_search"] for s in tried["failed_attempts"][0]["solves"]] == ["basic", "bt"]
-    assert direct["failed_attempts"][0]["attempt_newton_iterations"] == 1
-    assert direct["newton_iterations"] == tried["newton_iterations"]  # the same cut-back steps
-    total = [sum(r["newton_iterations"]) + sum(f["attempt_newton_iterations"] for f in r["failed_attempts"])
-             for r in (direct, tried)]
-    assert total[0] < total[1]
-    _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
-    assert lam == lam_tried == pytest.approx(1.0)
-    assert force == pytest.approx(P3, rel=1e-6) and force == pytest.approx(force_tried, rel=1e-10)
-
-
 def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir):
-    """The same squeeze with solver.fallback_after_nan: the full-step solve goes
+    """The same squeeze with linesearch = "auto": the full-step solve goes
     NaN at its first iterate, the backtracking solve is tried next from the
     same start (it crawls and is stopped as stalled here), and only then is
     the step cut back; the run ends on the closed-form state."""
-    sim, messages = squeeze(out_dir, 0.7, max_it=25, after_nan=True)
+    sim, messages = squeeze(out_dir, 0.7, max_it=25)
     writer = sim.run()
     failed = [m for m in messages if "failed" in m]
     assert len(failed) == 1
@@ -153,7 +124,7 @@ def test_a_crawling_fallback_is_stopped_and_ends_where_the_crawl_does(out_dir):
     for min_decrease in (0.05, 0):
         folder = out_dir / f"stall{min_decrease}"
         folder.mkdir()
-        sim, messages = squeeze(folder, 0.7, max_it=25, stall_decrease=min_decrease, after_nan=True)
+        sim, messages = squeeze(folder, 0.7, max_it=25, stall_decrease=min_decrease)
         sim.run()
         summary = json.loads((folder / "summary.json").read_text())
         assert len(summary["failed_attempts"]) == 1

@@ -129,7 +129,6 @@ class Solver(SceneModel):
     fallback_max_it: integer(from_to(0, 1000, "an integer from 0 to 1000 (0: max_it)")) = 0
     stall_decrease: number((lambda x: 0 <= x < 1, "a fraction from 0 (no stall stop) to below 1")) = 0.05
     stall_its: integer(from_to(0, 1000, "an integer from 0 to 1000 (0: no such stop)")) = 4
-    fallback_after_nan: Boolean = False
     linesearch: string(one_of(("auto", "basic", "bt", "l2", "cp"),
                               "auto or a PETSc SNES line search: basic, bt, l2 or cp")) = "auto"
     linear: string(one_of(("auto", "direct", "iterative"),

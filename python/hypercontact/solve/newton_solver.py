@@ -13,20 +13,13 @@ from .monitor import IterationHistory
 from .newton import (KRYLOV_RTOL_MIN, STALLED, StallTest, converged_reason_name, krylov_forcing, line_search_of,
                      make_snes, residual_norms_of, set_line_search)
 
-#: reason of a solve whose last iterate gave a residual that is not a number (an inverted element)
-NAN_RESIDUAL = "DIVERGED_FNORM_NAN"
-
-
 class NewtonSolver:
     """SNES (newtonls) with the scene's solver settings. Line search "auto":
     full steps with rigid obstacles, backtracking with a deformable master;
     a solve that fails with one is tried again from the same start with the
     other before the step is cut back (which converges depends on the contact:
     full steps on the paper's punch, where backtracking crawls; backtracking
-    where full steps cycle, on Hertz or the ironing die's rim) — except a
-    solve that ended on a residual that is not a number (an iterate that
-    inverted an element), which is cut back at once unless
-    solver.fallback_after_nan."""
+    where full steps cycle, on Hertz or the ironing die's rim)."""
 
     def __init__(self, model, solver, timers):
         self.model, self.timers = model, timers
@@ -40,11 +33,6 @@ class NewtonSolver:
         # full step overshot into inverted elements) costs up to max_it iterations before the cut-back
         self.max_it = self.snes.getTolerances()[3]  # solver.max_it, or a snes_max_it in solver.petsc
         self.fallback_max_it = solver["fallback_max_it"] or self.max_it
-        # a solve whose iterate inverted an element (a residual that is not a number) goes straight to
-        # the cut-back unless solver.fallback_after_nan: over the test suite 54 of 68 such fallbacks
-        # failed, after 3-25 Newton iterations (408 in all); on the 706k punch each failed after 3
-        # Newton iterations of about 100 Krylov iterations (docs/performance.md §2)
-        self.fallback_after_nan = solver["fallback_after_nan"]
         # stall stops (docs/performance.md §2), then the step is cut back: a full-step solve that
         # cycles (stall_its iterations without a new smallest |R|, |R| back where it was two or three
         # iterations before), a backtracking fallback that crawls (two iterations in a row that each
@@ -130,8 +118,6 @@ class NewtonSolver:
         start = w.x.array.copy() if self.fallback else None
         ok, its, norms, reason = self._newton(self._stall_stop(fallback=False))
         if ok or self.fallback is None or reason == INVERTED_ELEMENT:
-            return ok, its, norms, reason
-        if reason == NAN_RESIDUAL and not self.fallback_after_nan:
             return ok, its, norms, reason
         w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
         self.model.sync_displacement()
