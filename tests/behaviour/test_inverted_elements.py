@@ -93,7 +93,7 @@ def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir)
 def test_damped_corrections_never_reach_an_inverted_iterate(out_dir):
     """The same squeeze with solver.damp_inversion: no solve meets a residual
     that is not a number (every correction whose full step inverts is
-    halved first), a failed attempt's solves are stopped as stalled after
+    halved first), a failed attempt's solves are stopped (stalled, or at max_it) after
     halved corrections, and the run ends on the closed-form state with
     finite results. Undamped, it fails at once on a residual that is not a
     number (the tests above; a 0.4 squeeze is no test of this: its first
@@ -104,7 +104,10 @@ def test_damped_corrections_never_reach_an_inverted_iterate(out_dir):
     assert not any("DIVERGED_FNORM_NAN" in m for m in messages), messages
     story = json.loads((out_dir / "summary.json").read_text())
     solves = [s for f in story["failed_attempts"] for s in f["solves"]]
-    assert all(s["reason"] == "STALLED" and s["damped_halvings"] for s in solves)
+    # each stopped after halved corrections: as stalled, or at max_it (the damped full steps wander,
+    # |R| 699, 797, 501, … 15.8, then 26.9 or 239 or 242: on two ranks the last bits of MUMPS's
+    # factorisations differ from run to run, and which of the two stops comes first with them)
+    assert all(s["reason"] in ("STALLED", "DIVERGED_MAX_IT") and s["damped_halvings"] for s in solves)
     assert story["linear_solver"]["damped_corrections"] >= max(sum(len(s["damped_halvings"]) for s in solves), 1)
     assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
     _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, d, EPS)
