@@ -69,9 +69,10 @@ def test_inverting_step_is_cut_back_and_recovers(out_dir):
 
 def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir):
     """The same squeeze with linesearch = "auto": the full-step solve goes
-    NaN at its first iterate, the backtracking solve is tried next from the
-    same start (it crawls and is stopped as stalled here), and only then is
-    the step cut back; the run ends on the closed-form state."""
+    NaN at its second iterate, the backtracking solve is tried next from its
+    first (which it would reach from the start in one whole step: |R| fell
+    by far more than 5 %; it crawls and is stopped as stalled here), and
+    only then is the step cut back; the run ends on the closed-form state."""
     sim, messages = squeeze(out_dir, 0.7, max_it=25)
     writer = sim.run()
     failed = [m for m in messages if "failed" in m]
@@ -79,10 +80,12 @@ def test_a_failed_solve_tries_the_other_line_search_before_the_cut_back(out_dir)
     its = int(re.search(r", (\d+) its", failed[0]).group(1))
     story = json.loads((out_dir / "summary.json").read_text())["failed_attempts"][0]
     solves = story["solves"]
-    # both solves ran: full steps to the NaN at the first iterate, then backtracking from the start
+    # both solves ran: full steps to the NaN at the second iterate, then backtracking from the first
     assert [(s["line_search"], s["reason"]) for s in solves] == [("basic", "DIVERGED_FNORM_NAN"), ("bt", "STALLED")]
     assert solves[0]["newton_iterations"] == 1 and its == sum(s["newton_iterations"] for s in solves)
-    assert solves[0]["residual_norms"][0] == solves[1]["residual_norms"][0]  # the same start
+    norms = solves[0]["residual_norms"]
+    assert len(norms) == 2 and norms[1] < 0.95 * norms[0] and solves[1]["from_iterate"] == 1
+    assert solves[1]["residual_norms"][0] == norms[1]  # the first iterate, its residual computed again
     assert writer.steps[-1]["load_factor"] == pytest.approx(1.0)
     _, _, P3 = compressed_block(lambda a, b, c: mooney_rivlin_principal(a, b, c, **PARAMS), 1.0, 0.7, EPS)
     assert sim.contacts[0].force(sim.u)[2] == pytest.approx(P3, rel=1e-6)
@@ -137,7 +140,9 @@ def test_a_crawling_fallback_is_stopped_and_ends_where_the_crawl_does(out_dir):
     crawl = crawled["failed_attempts"][0]["solves"][1]
     assert fallback["line_search"] == crawl["line_search"] == "bt"
     assert fallback["reason"] == stopped["failed_attempts"][0]["reason"] == "STALLED"
-    assert crawl["reason"] == "DIVERGED_MAX_IT" and crawl["newton_iterations"] == 25
+    # the 25 count from the step's start, the full step the fallback starts after among them
+    assert crawl["reason"] == "DIVERGED_MAX_IT" and crawl["from_iterate"] + crawl["newton_iterations"] == 25
+    assert fallback["from_iterate"] == crawl["from_iterate"]
     norms = fallback["residual_norms"]
     assert crawl["residual_norms"][:len(norms)] == norms  # the same iterates, stopped early
     assert all(b > 0.95 * a for a, b in zip(norms[-3:], norms[-2:]))  # the last two gained < 5 % each

@@ -137,7 +137,9 @@ class LoadStepping:
             ok, its, norms, reason = self.attempt(number, lam, dlam, stepper.cuts, prediction)
             if ok:
                 self.converged_negative_eigenvalues = self.negative_eigenvalues
-                stepper.converged(its)
+                # the step's size follows the iterations its Newton path took from the step's start: a
+                # fallback that did not take the full steps again saved their work, the step was no easier
+                stepper.converged(its + self.newton.iterations_not_repeated())
                 model.problem.prepare_contacts()  # the converged state: commit and results read it
                 for c in model.contacts:
                     c.commit()

@@ -16,10 +16,25 @@ from .newton import (KRYLOV_RTOL_MIN, STALLED, StallTest, converged_reason_name,
 class NewtonSolver:
     """SNES (newtonls) with the scene's solver settings. Line search "auto":
     full steps with rigid obstacles, backtracking with a deformable master;
-    a solve that fails with one is tried again from the same start with the
-    other before the step is cut back (which converges depends on the contact:
-    full steps on the paper's punch, where backtracking crawls; backtracking
-    where full steps cycle, on Hertz or the ironing die's rim)."""
+    a solve that fails with one is tried again with the other before the step
+    is cut back (which converges depends on the contact: full steps on the
+    paper's punch, where backtracking crawls; backtracking where full steps
+    cycle, on Hertz or the ironing die's rim). The full-step fallback starts
+    from the same start. The backtracking one starts where the failed
+    full-step solve's leading full steps end, so long as each lowered |R| by
+    at least the fraction RESUME_DECREASE: backtracking accepts such a step
+    whole (its sufficient-decrease test asks for a fraction 2e-4 of |R|²),
+    so from the same start it would take the same steps again, to the same
+    iterates (resume_fallback; docs/performance.md §2)."""
+
+    #: whether a backtracking fallback starts at the failed full-step solve's last iterate that it
+    #: would reach itself (True), or at the step's start (False: the same iterates, each computed again)
+    resume_fallback = True
+    #: the least decrease of |R| that makes a full step one the backtracking line search takes whole
+    #: (PETSc's bt, sufficient-decrease constant 1e-4: |R_new|² ≤ |R|² + 2e-4 (R·J dx), and R·J dx ≥
+    #: (1 - η)|R|² for a Krylov solve to the relative tolerance η ≤ 1 (krylov_forcing: η ≤ 0.1)),
+    #: and by more than the crawl stop's fraction: no stop of the fallback would have looked at it
+    RESUME_DECREASE = 0.05
 
     def __init__(self, model, solver, timers):
         self.model, self.timers = model, timers
@@ -53,6 +68,13 @@ class NewtonSolver:
         self.history = IterationHistory(model.contacts)
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
+        # the last iterate of the solve's leading full steps that each lowered |R| by RESUME_DECREASE or
+        # more (and the fallback's stall_decrease): (its number, a copy, |R|); None after the first
+        # iterate that did not
+        self._resume, self._leading, self._last_fnorm, self._resume_vec = None, False, 0.0, None
+        self.resume_decrease = max(self.RESUME_DECREASE, solver["stall_decrease"])
+        if self.fallback == "bt":
+            self.snes.setMonitor(self._track_full_steps)
         self.linear_iterations = []  # Krylov iterations of each Newton solve
         # what each Newton solve did (line search, iterations, reason, residual norms): a failed
         # attempt's story lists its solves, the primary's as well as the fallback's
@@ -101,6 +123,25 @@ class NewtonSolver:
             self.krylov_s += now - self._t_krylov
         self._t_krylov = now
 
+    def _track_full_steps(self, snes, its, fnorm):
+        """Keep the last iterate of the leading full steps a backtracking
+        fallback would take whole (solve). |R| is global: every rank decides
+        alike."""
+        if line_search_of(snes) != "basic":
+            return
+        if its == 0:
+            self._resume, self._leading = None, True
+        elif (self._leading and its < self.fallback_max_it and np.isfinite(fnorm)
+              and fnorm <= (1.0 - self.resume_decrease) * self._last_fnorm):
+            x = snes.getSolution()
+            if self._resume_vec is None or self._resume_vec.getSizes() != x.getSizes():
+                self._resume_vec = x.duplicate()
+            x.copy(self._resume_vec)
+            self._resume = (its, fnorm)
+        else:
+            self._leading = False
+        self._last_fnorm = fnorm
+
     def residual_norm(self):
         """|R| at the current unknown and load factor (one residual evaluation)."""
         p = self.model.problem
@@ -116,15 +157,28 @@ class NewtonSolver:
         self.reference = reference
         w = self.model.w
         start = w.x.array.copy() if self.fallback else None
+        self._resume = None
         ok, its, norms, reason = self._newton(self._stall_stop(fallback=False))
         if ok or self.fallback is None or reason == INVERTED_ELEMENT:
             return ok, its, norms, reason
-        w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
+        resume = self._resume if (self.fallback == "bt" and self.resume_fallback
+                                  and self.damping is None) else None
+        done = 0  # full steps of the failed solve the fallback does not take again
+        if resume is None:
+            w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
+        else:
+            done = resume[0]
+            self._resume_vec.copy(w.vector)
+            dfx.update_ghosts(w)
         self.model.sync_displacement()
         primary = set_line_search(self.snes, self.fallback)
-        self.snes.setTolerances(max_it=self.fallback_max_it)
+        self.snes.setTolerances(max_it=self.fallback_max_it - done)
         try:
-            ok, more, norms, reason = self._newton(self._stall_stop(fallback=True))
+            test = self._stall_stop(fallback=True)
+            # the tolerances measure against the step's |R_0|, as from the start
+            test.reference = max(self.reference, norms[0]) if done else self.reference
+            ok, more, norms, reason = self._newton(test)
+            self.solves[-1]["from_iterate"] = done
         finally:
             set_line_search(self.snes, primary)
             self.snes.setTolerances(max_it=self.max_it)
@@ -184,6 +238,13 @@ class NewtonSolver:
             converged, name = False, INVERTED_ELEMENT
         record["reason"] = name
         return converged, self.snes.getIterationNumber(), norms, name
+
+    def iterations_not_repeated(self):
+        """The full steps the backtracking fallbacks of the solves since
+        ``solves`` was last cleared started after instead of taking them again
+        (resume_fallback): the same solves from the step's start would have
+        taken that many more Newton iterations to the same iterates."""
+        return sum(s.get("from_iterate", 0) for s in self.solves)
 
     def iterations(self):
         return self.snes.getIterationNumber()
