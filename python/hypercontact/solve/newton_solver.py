@@ -23,7 +23,7 @@ class NewtonSolver:
     from the same start. The backtracking one starts where the failed
     full-step solve's leading full steps end, so long as each lowered |R| by
     at least the fraction RESUME_DECREASE: backtracking accepts such a step
-    whole (its sufficient-decrease test asks for a fraction 2e-4 of |R|²),
+    whole (its sufficient-decrease test asks for at most 4e-4 |R|²),
     so from the same start it would take the same steps again, to the same
     iterates (resume_fallback; docs/performance.md §2)."""
 
@@ -31,9 +31,10 @@ class NewtonSolver:
     #: would reach itself (True), or at the step's start (False: the same iterates, each computed again)
     resume_fallback = True
     #: the least decrease of |R| that makes a full step one the backtracking line search takes whole
-    #: (PETSc's bt, sufficient-decrease constant 1e-4: |R_new|² ≤ |R|² + 2e-4 (R·J dx), and R·J dx ≥
-    #: (1 - η)|R|² for a Krylov solve to the relative tolerance η ≤ 1 (krylov_forcing: η ≤ 0.1)),
-    #: and by more than the crawl stop's fraction: no stop of the fallback would have looked at it
+    #: (PETSc's bt, sufficient-decrease constant α = 1e-4, takes it when |R_new|² ≤ |R|² − 2α|R·J dx|,
+    #: and |R·J dx| ≤ (1 + η)|R|² for a Krylov solve to the relative tolerance η ≤ 1, so any
+    #: |R_new| ≤ 0.95 |R| passes), and by more than the crawl stop's fraction: no stop of the
+    #: fallback would have looked at it
     RESUME_DECREASE = 0.05
 
     def __init__(self, model, solver, timers):
