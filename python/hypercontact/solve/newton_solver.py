@@ -70,9 +70,8 @@ class NewtonSolver:
         self.snes.setConvergenceHistory(length=max(self.max_it, self.fallback_max_it) + 1, reset=True)
         self.snes.setMonitor(self.history.monitor)
         # the last iterate of the solve's leading full steps that each lowered |R| by RESUME_DECREASE or
-        # more (and the fallback's stall_decrease): (its number, a copy, |R|); None after the first
-        # iterate that did not
-        self._resume, self._leading, self._last_fnorm, self._resume_vec = None, False, 0.0, None
+        # more (and the fallback's stall_decrease): its number (0: none) and a copy of it
+        self._resume_at, self._leading, self._last_fnorm, self._resume_vec = 0, False, 0.0, None
         self.resume_decrease = max(self.RESUME_DECREASE, solver["stall_decrease"])
         if self.fallback == "bt":
             self.snes.setMonitor(self._track_full_steps)
@@ -131,14 +130,14 @@ class NewtonSolver:
         if line_search_of(snes) != "basic":
             return
         if its == 0:
-            self._resume, self._leading = None, True
+            self._resume_at, self._leading = 0, True
         elif (self._leading and its < self.fallback_max_it and np.isfinite(fnorm)
               and fnorm <= (1.0 - self.resume_decrease) * self._last_fnorm):
             x = snes.getSolution()
             if self._resume_vec is None or self._resume_vec.getSizes() != x.getSizes():
                 self._resume_vec = x.duplicate()
             x.copy(self._resume_vec)
-            self._resume = (its, fnorm)
+            self._resume_at = its
         else:
             self._leading = False
         self._last_fnorm = fnorm
@@ -158,17 +157,15 @@ class NewtonSolver:
         self.reference = reference
         w = self.model.w
         start = w.x.array.copy() if self.fallback else None
-        self._resume = None
+        self._resume_at = 0  # (set by _track_full_steps, with a backtracking fallback only)
         ok, its, norms, reason = self._newton(self._stall_stop(fallback=False))
         if ok or self.fallback is None or reason == INVERTED_ELEMENT:
             return ok, its, norms, reason
-        resume = self._resume if (self.fallback == "bt" and self.resume_fallback
-                                  and self.damping is None) else None
-        done = 0  # full steps of the failed solve the fallback does not take again
-        if resume is None:
+        # full steps of the failed solve the fallback does not take again
+        done = self._resume_at if self.resume_fallback and self.damping is None else 0
+        if not done:
             w.x.array[:] = start  # a failed solve leaves its last iterate in the unknown
         else:
-            done = resume[0]
             self._resume_vec.copy(w.vector)
             dfx.update_ghosts(w)
         self.model.sync_displacement()
