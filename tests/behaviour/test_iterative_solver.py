@@ -13,7 +13,7 @@ import pytest
 from mpi4py import MPI
 
 from hypercontact import scene
-from hypercontact.solve.newton import linear_solver_options
+from hypercontact.solve.newton import DIRECT_MAX_UNKNOWNS, linear_solver_options
 from hypercontact.simulation import Simulation
 
 from conftest import ROOT
@@ -36,6 +36,19 @@ def test_auto_choice_by_size():
     assert linear_solver_options(solver, 1000)[0] == "direct"
     kind, options = linear_solver_options(solver, 1001)
     assert kind == "iterative" and options["pc_type"] == "gamg" and options["ksp_type"] == "gmres"
+    # a scene's own limit holds whatever the contact
+    assert linear_solver_options(solver, 1001, deformable=True)[0] == "iterative"
+    # unset: the measured crossover of the contact's kind
+    unset = {"linear": "auto", "direct_max_unknowns": None}
+    rigid, deformable = DIRECT_MAX_UNKNOWNS["rigid"], DIRECT_MAX_UNKNOWNS["deformable"]
+    assert rigid < deformable
+    assert linear_solver_options(unset, rigid)[0] == "direct"
+    assert linear_solver_options(unset, rigid + 1)[0] == "iterative"
+    assert linear_solver_options(unset, rigid + 1, deformable=True)[0] == "direct"
+    assert linear_solver_options(unset, deformable + 1, deformable=True)[0] == "iterative"
+    # without the rigid-body modes (quadratic or mixed spaces) AMG is not chosen at any size
+    assert linear_solver_options(unset, 10**8, amg=False)[0] == "direct"
+    assert linear_solver_options({**unset, "linear": "iterative"}, 10, amg=False)[0] == "iterative"
 
 
 def test_iterative_equals_direct_and_iterations_stay_bounded(tmp_path):

@@ -134,7 +134,7 @@ class Solver(SceneModel):
     linear: string(one_of(("auto", "direct", "iterative"),
                           '"auto" (direct up to direct_max_unknowns, else iterative), "direct" (MUMPS LU) or '
                           '"iterative" (GMRES + GAMG with the rigid-body modes)')) = "auto"
-    direct_max_unknowns: integer(POSITIVE) = 200000
+    direct_max_unknowns: Optional[integer(POSITIVE)] = None  # None: the measured crossover (solve/newton.py)
     damp_inversion: Boolean = False
     petsc: Table = {}
 

@@ -164,7 +164,25 @@ def krylov_forcing(fnorm, target):
     return float(min(KRYLOV_RTOL_MAX, max(KRYLOV_RTOL_MIN, 0.1 * target / fnorm)))
 
 
-def linear_solver_options(solver, num_unknowns, symmetric=False):
+# Where "auto" stops factorising: the measured crossovers (bench/crossover.py,
+# docs/performance.md §2). On the punch against rigid obstacles the whole path
+# with GMRES + GAMG took 1.17x the direct solver's time at 13 125 unknowns, 0.81x
+# (frictionless) and 0.95x (mu1 = 0.3) at 20 184, 0.82x and 0.72x at 29 403;
+# the limit sits where both are clearly past it. Two deformable bodies in contact
+# (Hertz, 21 330 unknowns) took 1.40x with GAMG (94 Krylov iterations per tangent,
+# 76 in its converged steps, against the punch's 20-34): there the old limit stays until measured.
+DIRECT_MAX_UNKNOWNS = {"rigid": 25_000, "deformable": 200_000}
+
+
+def direct_max_unknowns(solver, deformable=False):
+    """The size up to which "auto" factorises: the scene's solver.direct_max_unknowns,
+    or the measured crossover for its kind of contact (``deformable``: a deformable
+    master, whose coupling of the bodies makes AMG need three times the iterations)."""
+    limit = solver.get("direct_max_unknowns")
+    return limit if limit is not None else DIRECT_MAX_UNKNOWNS["deformable" if deformable else "rigid"]
+
+
+def linear_solver_options(solver, num_unknowns, symmetric=False, deformable=False, amg=True):
     """PETSc options of the linear solver the scene asks for: "direct"
     (MUMPS: LDLᵀ where the tangent is ``symmetric``, measured 0.74× the LU's
     linear-solve time on the 32×32×8 punch, else LU), "iterative" (GMRES,
@@ -175,8 +193,11 @@ def linear_solver_options(solver, num_unknowns, symmetric=False):
     cost 10–20 % more time than the set-ups it saved (docs/performance.md);
     GMRES because friction and follower loads make the tangent
     non-symmetric, and a symmetric one is indefinite past a limit point), or
-    "auto": direct up to solver.direct_max_unknowns, iterative above (a direct
-    factorisation's memory and time grow faster than linearly in 3D).
+    "auto": direct up to direct_max_unknowns(solver, deformable), iterative
+    above (a direct factorisation's memory and time grow faster than linearly
+    in 3D) — where ``amg``: the unknowns are a linear displacement field, whose
+    rigid-body modes the AMG is given; quadratic and mixed (u–p) spaces get no
+    near-nullspace, and "auto" factorises them at any size.
 
     GAMG coarsens until a level has at most 3000 equations and solves that
     one directly: with 1000, the 32×32×8 punch's hierarchy was 29 403 →
@@ -185,7 +206,7 @@ def linear_solver_options(solver, num_unknowns, symmetric=False):
     (docs/performance.md §2)."""
     kind = solver["linear"]
     if kind == "auto":
-        kind = "direct" if num_unknowns <= solver["direct_max_unknowns"] else "iterative"
+        kind = "iterative" if amg and num_unknowns > direct_max_unknowns(solver, deformable) else "direct"
     if kind == "direct":
         return kind, {"ksp_type": "preonly", "pc_type": "cholesky" if symmetric else "lu",
                       "pc_factor_mat_solver_type": "mumps"}
@@ -239,7 +260,8 @@ def make_snes(problem, comm, solver, prefix="hc_", deformable=False, symmetric=F
         "snes_linesearch_type": (("bt" if deformable else "basic") if solver["linesearch"] == "auto"
                                  else solver["linesearch"]),
     }
-    problem.linear_kind, linear = linear_solver_options(solver, problem.A.getSize()[0], symmetric)
+    problem.linear_kind, linear = linear_solver_options(solver, problem.A.getSize()[0], symmetric, deformable,
+                                                        amg=problem.near_nullspace is not None)
     defaults.update(linear)
     set_prefixed_options(prefix, {**defaults, **solver["petsc"]})
     snes.setFunction(problem.residual, problem.b)
