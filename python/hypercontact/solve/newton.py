@@ -169,8 +169,9 @@ def krylov_forcing(fnorm, target):
 # with GMRES + GAMG took 1.17x the direct solver's time at 13 125 unknowns, 0.81x
 # (frictionless) and 0.95x (mu1 = 0.3) at 20 184, 0.82x and 0.72x at 29 403;
 # the limit sits where both are clearly past it. Two deformable bodies in contact
-# (Hertz, 21 330 unknowns) took 1.40x with GAMG (94 Krylov iterations per tangent,
-# 76 in its converged steps, against the punch's 20-34): there the old limit stays until measured.
+# (Hertz) took 1.40x with GAMG at 21 330 unknowns and 1.27x at 40 071, its Krylov
+# count growing with the mesh (94 and 118 per tangent, against the punch's 20-34):
+# there the old limit stays; where the two cross is not measured.
 DIRECT_MAX_UNKNOWNS = {"rigid": 25_000, "deformable": 200_000}
 
 
